@@ -1,0 +1,9 @@
+# Strict warnings for the project's own targets; third-party headers come in as SYSTEM.
+add_library(grip_warnings INTERFACE)
+target_compile_options(grip_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wconversion -Wsign-conversion -Wshadow
+  -Wnon-virtual-dtor -Wold-style-cast -Wcast-align -Woverloaded-virtual
+  -Wnull-dereference -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough)
+if(GRIP_WERROR)
+  target_compile_options(grip_warnings INTERFACE -Werror)
+endif()

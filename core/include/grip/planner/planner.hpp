@@ -1,0 +1,214 @@
+#pragma once
+// The tree planner: GRIP's selection and propagation (GRIP.md section 2.2, Algorithm 1's main
+// loop) with safety at low cost (section 2.3), and the baselines of the paper's Fig. 5/6 on
+// the same tree, propagation and rho.
+//
+// Reads like OMPL's planners: set a problem, then solve(termination condition) returns a
+// status. Everything is reserved by create(); solve() allocates nothing, never blocks and
+// never throws. When the pools run out it stops growing, says so, and keeps its best answer.
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "grip/common/function_ref.hpp"
+#include "grip/common/random.hpp"
+#include "grip/common/result.hpp"
+#include "grip/memory/fixed_vector.hpp"
+#include "grip/memory/indexed_min_heap.hpp"
+#include "grip/planner/contingency.hpp"
+#include "grip/planner/planner_config.hpp"
+#include "grip/planner/tree.hpp"
+#include "grip/vehicles/car.hpp"
+#include "grip/vehicles/dd_acceleration.hpp"
+#include "grip/vehicles/dd_velocity.hpp"
+#include "grip/world/collision_checker.hpp"
+#include "grip/world/distance_field.hpp"
+#include "grip/world/occupancy_grid.hpp"
+
+namespace grip {
+
+// The goal region F: the reference point within radius of a workspace point.
+struct GoalRegion {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double radius_m = 1.0;
+  bool contains(double x, double y) const noexcept {
+    const double dx = x - x_m;
+    const double dy = y - y_m;
+    return dx * dx + dy * dy <= radius_m * radius_m;
+  }
+};
+
+// One piece of a plan: a control held for a duration (section 1, p = {(u1, dt1), ...}).
+struct PlanStep {
+  std::array<double, 2> control{};
+  double duration_s = 0.0;
+};
+
+enum class SolveStatus { kExactSolution, kApproximateSolution, kNoSolution };
+enum class StopReason { kGoalReached, kTerminationCondition, kPoolExhausted };
+
+std::string_view solve_status_name(SolveStatus s) noexcept;
+std::string_view stop_reason_name(StopReason r) noexcept;
+
+struct SolveResult {
+  SolveStatus status = SolveStatus::kNoSolution;
+  StopReason reason = StopReason::kTerminationCondition;
+};
+
+// Work counters, cumulative since the last set_problem().
+struct PlannerStats {
+  std::uint64_t iterations = 0;    // selections made
+  std::uint64_t edges_added = 0;   // new edges (the paper's "edges added" metric)
+  std::uint64_t propagations = 0;  // integration steps of random plans
+  std::uint64_t collision_checks = 0;
+  std::uint64_t contingency_checks = 0;  // braking maneuvers run
+  bool pool_exhausted = false;
+};
+
+// A state reached in the tree: recorded state k of edge e.
+struct TreeState {
+  EdgeHandle edge = kNoHandle;
+  std::uint16_t index = 0;
+};
+
+template <VehicleModel V>
+class Planner {
+ public:
+  using State = typename V::State;
+  using Control = typename V::Control;
+
+  // Reserves every buffer for the configured budget. The grid must outlive the planner.
+  static Result<Planner> create(const V& vehicle, const OccupancyGrid& grid,
+                                const PlannerConfig& config);
+
+  // Start-up: validates start and goal, computes rho's wavefront from the goal, resets the
+  // tree to the start. Refuses NaN or out-of-limit states, a start in collision, a goal
+  // outside the grid or with no free cell.
+  Status set_problem(const State& start, const GoalRegion& goal);
+
+  // Grows the tree until the goal is reached, should_stop() returns true (checked once per
+  // iteration), or the pools are exhausted.
+  SolveResult solve(FunctionRef<bool()> should_stop) noexcept;
+
+  bool solved() const noexcept { return solution_.edge != kNoHandle; }
+  // The solution if solved, else the tree state closest to the goal by rho.
+  TreeState best_state() const noexcept;
+  double best_rho_m() const noexcept { return best_rho_; }
+
+  // Writes the plan from the root to s into `out`; false if it does not fit.
+  bool extract_plan(TreeState s, VectorView<PlanStep>& out) const noexcept;
+  // Calls visit(state) for every recorded state from the root to s, in order (allocates).
+  template <typename Visitor>
+  void visit_path(TreeState s, Visitor&& visit) const;
+  // Calls visit(edge handle, edge) for every edge in the tree.
+  template <typename Visitor>
+  void visit_edges(Visitor&& visit) const;
+
+  // ln s(e) = p(e) ln a + ln rho(e, F) (Eq. 3 in log space; a^p overflows for real p).
+  double log_score(EdgeHandle e) const noexcept { return score(tree_.edge(e)); }
+  // The edge GRIP selects next (the heap's minimum), for tests and diagnostics.
+  EdgeHandle peek_selection() const noexcept { return heap_.empty() ? kNoHandle : heap_.top(); }
+  std::uint32_t heap_size() const noexcept { return static_cast<std::uint32_t>(heap_.size()); }
+
+  const PlannerStats& stats() const noexcept { return stats_; }
+  const Tree<State>& tree() const noexcept { return tree_; }
+  const PlannerConfig& config() const noexcept { return config_; }
+  const V& vehicle() const noexcept { return vehicle_; }
+  const CollisionChecker& checker() const noexcept { return checker_; }
+  const DistanceField& rho_field() const noexcept { return rho_field_; }
+  double collision_margin_m() const noexcept { return checker_.margin(); }
+
+ private:
+  struct Propagated {
+    std::uint16_t last = 0;  // recorded states kept: [0, last]; 0 means nothing usable
+    bool reached_goal = false;
+    double rho_m = std::numeric_limits<double>::infinity();
+    std::uint16_t rho_index = 0;
+  };
+
+  Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerConfig& config,
+          CollisionChecker checker, DistanceField field);
+
+  bool iterate() noexcept;
+  TreeState select() noexcept;
+  TreeState select_rrt() noexcept;
+  TreeState resolve(TreeState s) const noexcept;
+  EdgeHandle expand_from(TreeState from) noexcept;
+  Propagated propagate(TrajectoryHandle t, const State& from, std::uint32_t from_step,
+                       const Control& u, std::uint32_t steps) noexcept;
+  bool contingency_safe(const State& q) noexcept;
+  bool is_free(const State& q) noexcept;
+  double edge_rho(EdgeHandle e) const noexcept;
+  double score(const Edge& e) const noexcept;
+  void register_edge(EdgeHandle e) noexcept;
+  void push_scored(EdgeHandle e) noexcept;
+  double rho_at(const State& q) const noexcept {
+    return rho_field_.distance_m(state_x(q), state_y(q));
+  }
+
+  V vehicle_;
+  PlannerConfig config_;
+  const OccupancyGrid* grid_;
+  CollisionChecker checker_;
+  DistanceField rho_field_;
+  Tree<State> tree_;
+  IndexedMinHeap heap_;
+  BoundedVector<EdgeHandle> live_edges_;     // random selection
+  BoundedVector<std::uint32_t> free_cells_;  // RRT samples
+  BoundedVector<TreeState> cell_state_;      // RRT: a tree state in each grid cell
+  BoundedVector<std::uint32_t> goal_cells_;
+  Random rng_;
+  GoalRegion goal_;
+  PlannerStats stats_;
+  TreeState solution_;
+  TreeState best_;
+  double best_rho_ = std::numeric_limits<double>::infinity();
+  double log_a_;
+  std::uint32_t horizon_step_;
+  std::uint32_t min_edge_records_;
+  std::uint32_t min_plan_steps_;
+  std::uint32_t max_plan_steps_;
+  bool problem_set_ = false;
+};
+
+// Creates a planner for the given vehicle with its default parameters and the config.
+using DdVelocityPlanner = Planner<DdVelocity>;
+using DdAccelerationPlanner = Planner<DdAcceleration>;
+using CarPlanner = Planner<Car>;
+
+extern template class Planner<DdVelocity>;
+extern template class Planner<DdAcceleration>;
+extern template class Planner<Car>;
+
+template <VehicleModel V>
+template <typename Visitor>
+void Planner<V>::visit_path(TreeState s, Visitor&& visit) const {
+  // For drawing and tests, not the planning loop: it allocates the chain of edges.
+  s = resolve(s);
+  if (s.edge == kNoHandle) return;
+  std::vector<EdgeHandle> chain;
+  for (EdgeHandle e = s.edge; e != kNoHandle; e = tree_.edge(e).parent) chain.push_back(e);
+  for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+    const Edge& edge = tree_.edge(*it);
+    const std::uint16_t last = (*it == s.edge) ? s.index : edge.last;
+    const int first = (edge.parent == kNoHandle) ? edge.first : edge.first + 1;
+    for (int k = first; k <= last; ++k) {
+      visit(tree_.state(edge.trajectory, static_cast<std::uint32_t>(k)));
+    }
+  }
+}
+
+template <VehicleModel V>
+template <typename Visitor>
+void Planner<V>::visit_edges(Visitor&& visit) const {
+  for (EdgeHandle e = 0; e < tree_.edge_capacity(); ++e) {
+    if (tree_.contains(e)) visit(e, tree_.edge(e));
+  }
+}
+
+}  // namespace grip

@@ -1,0 +1,69 @@
+#pragma once
+// Parameters of the tree planner: its memory budget, its propagation and GRIP's selection.
+// Capacity is decided here, at start-up; the planning loop then allocates nothing.
+
+#include <cstdint>
+#include <string_view>
+
+#include "grip/common/result.hpp"
+
+namespace grip {
+
+// How the edge to propagate from is chosen. kGrip is the paper's planner; the others are
+// the baselines of its Fig. 5/6, run on the same tree, propagation and rho.
+enum class Selection {
+  kGrip,     // minimum score s(e) = a^p(e) rho(e, F) from the heap (Eq. 2, 3)
+  kRandom,   // a uniformly random edge
+  kRrt,      // RRT-EXTEND: the tree state nearest (by rho_A*) to a random free point
+  kRrtBias,  // RRT-EXTEND-BIAS: as kRrt, with the goal as the attractor a fraction of the time
+};
+
+// Where braking contingencies are checked (section 2.3).
+enum class SafetyCheck {
+  kAtHorizon,  // only states reached at time T from the root (the paper's theorem)
+  kAllLeaves,  // every new leaf must be safe (the Fig. 7 comparison)
+  kNone,       // no contingency check (the --no-safety ablation)
+};
+
+std::string_view selection_name(Selection s) noexcept;
+Result<Selection> selection_from_name(std::string_view name);
+
+struct PlannerConfig {
+  Selection selection = Selection::kGrip;
+  SafetyCheck safety = SafetyCheck::kAtHorizon;
+
+  // Memory budget. Each propagation uses one trajectory and up to two edge records (the new
+  // edge and the head of the split one).
+  std::uint32_t max_edges = 40'000;
+  std::uint32_t max_trajectories = 20'000;
+
+  // Integration: the dynamics and the chassis are checked every integration step; a state is
+  // recorded every `steps_per_record` steps (the states edges are split at and rho is taken
+  // over).
+  double integration_step_s = 0.05;
+  std::uint32_t steps_per_record = 2;
+
+  // Random plans: one control held for a duration uniform in [min, max] (section 2.2 step 3).
+  double min_plan_duration_s = 0.3;
+  double max_plan_duration_s = 1.5;
+  // New edges shorter than this (t_free below the threshold) are discarded.
+  double min_edge_duration_s = 0.1;
+
+  // GRIP's trade-off a > 1 between greed (rho) and the priority counters (Eq. 3).
+  double score_base_a = 1.0002;
+  // T: the time from the root at which contingencies are checked; in replanning, the
+  // duration of the next cycle. Rounded to a whole number of integration steps.
+  double safety_horizon_s = 1.0;
+  // RRT-EXTEND-BIAS: the fraction of samples that are the goal.
+  double rrt_goal_bias = 0.2;
+
+  std::uint64_t seed = 1;
+
+  double record_step_s() const noexcept { return integration_step_s * steps_per_record; }
+  // States a trajectory holds at most: the start plus one per record step of the longest plan.
+  std::uint32_t states_per_trajectory() const noexcept;
+
+  Status validate() const;
+};
+
+}  // namespace grip

@@ -1,0 +1,61 @@
+#pragma once
+// Differential-drive robot with acceleration control (GRIP.md section 4, vehicle 2).
+//
+// State (x [m], y [m], theta [rad], v_left [m/s], v_right [m/s]); control (a_left, a_right)
+// [m/s^2]. The wheel rim speeds saturate at +-max_wheel_speed and their difference at the
+// turn-rate limit, as a motor controller would hold them.
+// Contingency (paper): the wheel with the larger |speed| brakes at the maximal deceleration,
+// the other wheel's deceleration is chosen so that both reach zero at the same time.
+
+#include <Eigen/Core>
+
+#include "grip/vehicles/vehicle.hpp"
+
+namespace grip {
+
+struct DdAccelerationParams {
+  double max_wheel_speed_m_s = 3.0;                   // paper: |V| <= 3
+  double max_turn_rate_rad_s = std::numbers::pi / 2;  // paper: |theta'| <= 90 deg/s
+  double max_wheel_accel_m_s2 = 0.6;                  // paper: |a| <= 0.6
+  double half_axle_m = 0.2;                           // L
+  Footprint footprint{0.25, 0.25, 0.2};
+
+  Status validate() const;
+};
+
+class DdAcceleration {
+ public:
+  static constexpr VehicleKind kKind = VehicleKind::kDdAcceleration;
+  static constexpr int kStateDim = 5;
+  using State = Eigen::Matrix<double, 5, 1>;
+  using Control = Eigen::Matrix<double, 2, 1>;
+
+  static Result<DdAcceleration> create(const DdAccelerationParams& params);
+
+  State step(const State& q, const Control& u, double dt) const noexcept;
+  Control sample_control(Random& rng) const noexcept;
+  Control braking_control(const State& q) const noexcept;
+  State brake_step(const State& q, double dt) const noexcept;
+  bool is_stopped(const State& q) const noexcept { return q[3] == 0.0 && q[4] == 0.0; }
+  double max_stopping_time_s() const noexcept {
+    return params_.max_wheel_speed_m_s / params_.max_wheel_accel_m_s2;
+  }
+  double max_speed_m_s() const noexcept { return params_.max_wheel_speed_m_s; }
+  double max_turn_rate_rad_s() const noexcept { return params_.max_turn_rate_rad_s; }
+  const Footprint& footprint() const noexcept { return params_.footprint; }
+  double speed_m_s(const State& q) const noexcept { return std::abs(0.5 * (q[3] + q[4])); }
+  Status validate_state(const State& q) const;
+  Status validate_control(const Control& u) const;
+  State rest_state(double x, double y, double theta) const noexcept {
+    State q;
+    q << x, y, theta, 0.0, 0.0;
+    return q;
+  }
+  const DdAccelerationParams& params() const noexcept { return params_; }
+
+ private:
+  explicit DdAcceleration(const DdAccelerationParams& params) : params_(params) {}
+  DdAccelerationParams params_;
+};
+
+}  // namespace grip

@@ -1,0 +1,76 @@
+#pragma once
+// Per-cell clearance of an occupancy grid: how far each cell is from the nearest cell that is
+// not known free (obstacle or unknown) or from the outside of the grid. Shared by the collision
+// checker (its O(1) "certainly free" test) and the distance field (its inflation).
+//
+// What is stored: d2(c), the exact squared Euclidean distance, in cells, from the centre of c to
+// the centre of the nearest non-free cell, where every cell outside the grid counts as non-free
+// (0 for a non-free cell). Computed by an exact two-pass Euclidean distance transform
+// (Felzenszwalb & Huttenlocher) in O(cells), without allocation after create().
+//
+// What it means, in metres (res = resolution, hd = res * sqrt(2) / 2, half a cell diagonal):
+//   clearance_m(c) = sqrt(d2(c)) * res - hd   (0 for a non-free cell)
+// is a lower bound of the distance from the centre of c to any point of any non-free cell,
+// because every point of a cell lies within hd of its centre. It errs low by at most
+// 0.21 * res against axis-aligned walls. Consequently every point of c is at least
+// clearance_m(c) - hd from every non-free point.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "grip/common/result.hpp"
+#include "grip/world/occupancy_grid.hpp"
+
+namespace grip {
+
+class ClearanceMap {
+ public:
+  // Allocates every buffer; errors as for OccupancyGrid::create. compute() must run before use.
+  static Result<ClearanceMap> create(int width_cells, int height_cells, double resolution_m);
+  // Allocates for the grid's size and computes.
+  static Result<ClearanceMap> create_for(const OccupancyGrid& grid);
+
+  // Recomputes from the grid. Asserts the grid has this map's width, height and resolution.
+  void compute(const OccupancyGrid& grid) noexcept;
+
+  int width() const noexcept { return width_; }
+  int height() const noexcept { return height_; }
+  double resolution() const noexcept { return resolution_; }
+  std::uint32_t cell_count() const noexcept { return static_cast<std::uint32_t>(d2_.size()); }
+  // The grid revision seen by the last compute(); false from computed() before the first.
+  std::uint64_t source_revision() const noexcept { return source_revision_; }
+  bool computed() const noexcept { return computed_; }
+
+  // d2 as described above. Asserts index < cell_count().
+  std::uint32_t squared_cells(std::uint32_t index) const noexcept {
+    GRIP_ASSERT(index < d2_.size());
+    return d2_[index];
+  }
+  // The lower bound described above [m]. Asserts index < cell_count().
+  double clearance_m(std::uint32_t index) const noexcept;
+  std::span<const std::uint32_t> squared_cells() const noexcept { return d2_; }
+
+  // The smallest d2 such that d2(c) >= it  <=>  clearance_m(c) >= min_clearance_m (up to a
+  // relative 1e-12 rounded towards requiring more). 0 for min_clearance_m <= 0 (every cell,
+  // including non-free ones: callers test freedom separately).
+  std::uint32_t squared_cells_at_least(double min_clearance_m) const noexcept;
+
+ private:
+  ClearanceMap(int width_cells, int height_cells, double resolution_m);
+
+  int width_;
+  int height_;
+  double resolution_;
+  double half_diagonal_m_;
+  std::uint64_t source_revision_ = 0;
+  bool computed_ = false;
+  std::vector<std::uint32_t> d2_;
+  // Scratch for the transform, sized at creation.
+  std::vector<std::int64_t> f_;
+  std::vector<std::int64_t> d_;
+  std::vector<int> v_;
+  std::vector<double> z_;
+};
+
+}  // namespace grip

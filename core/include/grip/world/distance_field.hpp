@@ -1,0 +1,132 @@
+#pragma once
+// The holonomic distance field behind the planner's metric rho_A* (GRIP.md section 2.2): one
+// Dijkstra wavefront from a target set over the grid, then O(1) lookups of the shortest
+// 8-connected path length from any cell to the nearest target.
+//
+// Costs are integers in units of resolution / 70: 70 for an orthogonal step, 99 for a diagonal
+// one (99 / 70 = 1.414..., sqrt 2 to 0.01 %). A diagonal step must not cut a corner: both
+// orthogonal cells beside it must be traversable. Traversable cells are kFree cells whose
+// clearance (world/clearance_map.hpp, the same lower bound the collision checker uses) is at
+// least inflation_m; inflation_m = 0 makes every free cell traversable. A path may start at a
+// target that is not traversable (targets are always seeds) but never enters a non-traversable
+// cell otherwise.
+//
+// Queue: Dial's algorithm, a cyclic bucket queue of 100 buckets (> the largest edge cost)
+// threaded through per-cell next/prev arrays; O(cells) per wavefront. All buffers are allocated
+// by create(); compute(), the lookups and nearest_matching() never allocate and never throw.
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "grip/common/function_ref.hpp"
+#include "grip/common/result.hpp"
+#include "grip/world/clearance_map.hpp"
+#include "grip/world/occupancy_grid.hpp"
+
+namespace grip {
+
+class DistanceField {
+ public:
+  static constexpr std::uint32_t kOrthogonalCost = 70;
+  static constexpr std::uint32_t kDiagonalCost = 99;
+  static constexpr std::uint32_t kCostUnitsPerCell = kOrthogonalCost;
+  static constexpr std::uint32_t kUnreachable = std::numeric_limits<std::uint32_t>::max();
+  static constexpr std::uint32_t kNoCell = std::numeric_limits<std::uint32_t>::max();
+
+  // Allocates every buffer for grids of exactly this size and resolution; errors as for
+  // OccupancyGrid::create.
+  static Result<DistanceField> create(int width_cells, int height_cells, double resolution_m);
+
+  // Builds the traversable set from the grid (computing a clearance map internally when
+  // inflation_m > 0) and runs the wavefront from target_cells (grid indices). Returns the
+  // number of reachable cells, targets included; 0 for an empty target set (everything then
+  // reads unreachable). Asserts: the grid's size and resolution match create(), every target
+  // < cell_count(), inflation_m finite and >= 0.
+  std::uint32_t compute(const OccupancyGrid& grid, std::span<const std::uint32_t> target_cells,
+                        double inflation_m = 0.0) noexcept;
+  // Same, sharing a clearance map computed from this grid at its current revision (asserted),
+  // e.g. CollisionChecker::clearance() after refresh().
+  std::uint32_t compute(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                        std::span<const std::uint32_t> target_cells, double inflation_m) noexcept;
+
+  // The two halves of compute(): prepare() fixes the traversable set (and the grid origin used
+  // by distance_m) without touching the distances; propagate() runs the wavefront over it.
+  void prepare(const OccupancyGrid& grid, double inflation_m = 0.0) noexcept;
+  void prepare(const OccupancyGrid& grid, const ClearanceMap& clearance,
+               double inflation_m) noexcept;
+  std::uint32_t propagate(std::span<const std::uint32_t> target_cells) noexcept;
+
+  // [m] path length from the cell containing (x_m, y_m) to the nearest target; +infinity when
+  // unreachable, outside the grid or not finite. O(1).
+  double distance_m(double x_m, double y_m) const noexcept;
+  // [m] the same by grid index; asserts cell_index < cell_count().
+  double at(std::uint32_t cell_index) const noexcept;
+  // The same in cost units (resolution / 70), kUnreachable when unreachable.
+  std::uint32_t cost_at(std::uint32_t cell_index) const noexcept;
+  bool reachable(std::uint32_t cell_index) const noexcept {
+    return cost_at(cell_index) != kUnreachable;
+  }
+  // Whether the last prepare()/compute() made this cell traversable.
+  bool traversable(std::uint32_t cell_index) const noexcept;
+
+  // Dijkstra from start_cell, with the same costs and the traversable set of the last
+  // prepare()/compute(); returns the first settled cell (in order of distance, start_cell first)
+  // for which is_target returns true, or kNoCell when none is reachable. When distance_m is not
+  // null it receives that cell's path length [m] (+infinity on kNoCell). Uses scratch buffers of
+  // its own (the field's distances are untouched) stamped with a generation counter, so a query
+  // costs time proportional to the cells it settles, not to the grid.
+  // Asserts start_cell < cell_count().
+  std::uint32_t nearest_matching(std::uint32_t start_cell,
+                                 FunctionRef<bool(std::uint32_t)> is_target,
+                                 double* distance_m = nullptr) noexcept;
+
+  int width() const noexcept { return width_; }
+  int height() const noexcept { return height_; }
+  double resolution() const noexcept { return resolution_; }
+  std::uint32_t cell_count() const noexcept {
+    return static_cast<std::uint32_t>(width_) * static_cast<std::uint32_t>(height_);
+  }
+  // The inflation and grid revision of the last prepare()/compute().
+  double inflation() const noexcept { return inflation_m_; }
+  std::uint64_t source_revision() const noexcept { return source_revision_; }
+
+ private:
+  static constexpr std::uint32_t kBuckets = 100;  // > kDiagonalCost
+  static constexpr std::uint32_t kNil = std::numeric_limits<std::uint32_t>::max();
+
+  // One Dijkstra's queue and labels over the padded grid (a ring of never-traversable cells
+  // around the real ones, so neighbours need no bounds tests).
+  struct Search {
+    std::vector<std::uint32_t> cost;
+    std::vector<std::uint32_t> next;
+    std::vector<std::uint32_t> prev;
+    std::uint32_t head[kBuckets];
+  };
+
+  DistanceField(int width_cells, int height_cells, double resolution_m, ClearanceMap clearance);
+  void build_mask(const OccupancyGrid& grid, const ClearanceMap* clearance,
+                  double inflation_m) noexcept;
+  std::uint32_t padded(std::uint32_t cell_index) const noexcept;
+  std::uint32_t unpadded(std::uint32_t padded_index) const noexcept;
+
+  int width_;
+  int height_;
+  double resolution_;
+  double inv_resolution_;
+  double metres_per_unit_;
+  std::uint32_t padded_width_;
+  double origin_x_m_ = 0.0;
+  double origin_y_m_ = 0.0;
+  double inflation_m_ = 0.0;
+  std::uint64_t source_revision_ = 0;
+  std::vector<std::uint8_t> traversable_;  // padded
+  Search field_;                           // the wavefront's labels are the field
+  Search scratch_;                         // nearest_matching's
+  std::vector<std::uint32_t> stamp_;       // nearest_matching's generation per padded cell
+  std::uint32_t generation_ = 0;
+  ClearanceMap clearance_;  // used when compute() is not given one
+};
+
+}  // namespace grip

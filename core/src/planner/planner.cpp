@@ -1,0 +1,464 @@
+#include "grip/planner/planner.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace grip {
+
+std::string_view solve_status_name(SolveStatus s) noexcept {
+  switch (s) {
+    case SolveStatus::kExactSolution:
+      return "exact";
+    case SolveStatus::kApproximateSolution:
+      return "approximate";
+    case SolveStatus::kNoSolution:
+      return "none";
+  }
+  return "unknown";
+}
+
+std::string_view stop_reason_name(StopReason r) noexcept {
+  switch (r) {
+    case StopReason::kGoalReached:
+      return "goal-reached";
+    case StopReason::kTerminationCondition:
+      return "terminated";
+    case StopReason::kPoolExhausted:
+      return "pool-exhausted";
+  }
+  return "unknown";
+}
+
+namespace {
+// Scores are compared in log space: a^p overflows for the priorities that occur (Eq. 3).
+constexpr double kRhoFloorM = 1e-3;
+
+std::uint32_t to_steps(double seconds, double step) noexcept {
+  return static_cast<std::uint32_t>(std::llround(seconds / step));
+}
+
+template <typename State>
+std::array<double, 2> to_array(const Eigen::Matrix<double, 2, 1>& u) noexcept {
+  return {u[0], u[1]};
+}
+}  // namespace
+
+template <VehicleModel V>
+Result<Planner<V>> Planner<V>::create(const V& vehicle, const OccupancyGrid& grid,
+                                      const PlannerConfig& config) {
+  if (auto s = config.validate(); !s) return s.error();
+  // Chassis checks happen every integration step; inflating the footprint by half the largest
+  // motion between two checks makes them cover the continuous trajectory.
+  const double dt = config.integration_step_s;
+  const Footprint& f = vehicle.footprint();
+  const double reach = std::hypot(std::max(f.front_m, f.rear_m), f.half_width_m);
+  const double margin =
+      0.5 * (vehicle.max_speed_m_s() * dt + reach * vehicle.max_turn_rate_rad_s() * dt);
+  auto checker = CollisionChecker::create(grid, f, margin);
+  if (!checker) return checker.error();
+  auto field = DistanceField::create(grid.width(), grid.height(), grid.resolution());
+  if (!field) return field.error();
+  return Planner(vehicle, grid, config, std::move(checker).value(), std::move(field).value());
+}
+
+template <VehicleModel V>
+Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerConfig& config,
+                    CollisionChecker checker, DistanceField field)
+    : vehicle_(vehicle),
+      config_(config),
+      grid_(&grid),
+      checker_(std::move(checker)),
+      rho_field_(std::move(field)),
+      tree_(config.max_edges, config.max_trajectories, config.states_per_trajectory(),
+            config.steps_per_record),
+      heap_(config.max_edges),
+      live_edges_(config.selection == Selection::kRandom ? config.max_edges : 0),
+      free_cells_(config.selection == Selection::kRrt || config.selection == Selection::kRrtBias
+                      ? grid.cell_count()
+                      : 0),
+      cell_state_(free_cells_.capacity()),
+      goal_cells_(grid.cell_count()),
+      rng_(config.seed),
+      log_a_(std::log(config.score_base_a)),
+      horizon_step_(to_steps(config.safety_horizon_s, config.integration_step_s)),
+      min_edge_records_(std::max<std::uint32_t>(
+          1U, static_cast<std::uint32_t>(
+                  std::ceil(config.min_edge_duration_s / config.record_step_s() - 1e-9)))),
+      min_plan_steps_(
+          std::max<std::uint32_t>(config.steps_per_record,
+                                  to_steps(config.min_plan_duration_s, config.integration_step_s))),
+      max_plan_steps_(std::min<std::uint32_t>(
+          to_steps(config.max_plan_duration_s, config.integration_step_s),
+          (config.states_per_trajectory() - 1U) * config.steps_per_record)) {
+  if (horizon_step_ == 0) horizon_step_ = 1;
+}
+
+template <VehicleModel V>
+Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
+  if (auto s = vehicle_.validate_state(start); !s)
+    return invalid_argument("start: " + s.error().message);
+  if (!std::isfinite(goal.x_m) || !std::isfinite(goal.y_m) || !std::isfinite(goal.radius_m) ||
+      goal.radius_m <= 0.0) {
+    return invalid_argument("goal must have finite coordinates and a radius > 0 (got (" +
+                            std::to_string(goal.x_m) + ", " + std::to_string(goal.y_m) +
+                            ") radius " + std::to_string(goal.radius_m) + ")");
+  }
+  int gx = 0;
+  int gy = 0;
+  if (!grid_->to_cell(goal.x_m, goal.y_m, gx, gy)) {
+    return invalid_argument("goal (" + std::to_string(goal.x_m) + ", " + std::to_string(goal.y_m) +
+                            ") lies outside the grid (" + std::to_string(grid_->width_m()) +
+                            " m x " + std::to_string(grid_->height_m()) + " m)");
+  }
+  checker_.refresh();
+  if (!checker_.is_free(state_x(start), state_y(start), state_theta(start))) {
+    return invalid_argument("start (" + std::to_string(state_x(start)) + ", " +
+                            std::to_string(state_y(start)) +
+                            ") puts the chassis in an obstacle or unknown space");
+  }
+  // The target set F: free cells whose centres lie in the goal disk.
+  goal_cells_.clear();
+  const int reach = static_cast<int>(std::ceil(goal.radius_m / grid_->resolution())) + 1;
+  for (int cy = gy - reach; cy <= gy + reach; ++cy) {
+    for (int cx = gx - reach; cx <= gx + reach; ++cx) {
+      if (!grid_->in_bounds(cx, cy) || grid_->at(cx, cy) != Cell::kFree) continue;
+      if (goal.contains(grid_->cell_center_x(cx), grid_->cell_center_y(cy))) {
+        GRIP_ASSERT(goal_cells_.push_back(grid_->index(cx, cy)));  // sized to the grid
+      }
+    }
+  }
+  if (goal_cells_.empty()) {
+    return invalid_argument("goal region at (" + std::to_string(goal.x_m) + ", " +
+                            std::to_string(goal.y_m) + ") radius " + std::to_string(goal.radius_m) +
+                            " contains no free cell");
+  }
+  goal_ = goal;
+  rho_field_.compute(*grid_, goal_cells_.span());
+
+  free_cells_.clear();
+  if (free_cells_.capacity() > 0) {
+    for (std::uint32_t c = 0; c < grid_->cell_count(); ++c) {
+      if (grid_->cells()[c] == Cell::kFree) GRIP_ASSERT(free_cells_.push_back(c));
+    }
+    cell_state_.clear();
+    for (std::uint32_t c = 0; c < cell_state_.capacity(); ++c) {
+      GRIP_ASSERT(cell_state_.push_back(TreeState{}));
+    }
+  }
+
+  rng_.reseed(config_.seed);
+  stats_ = PlannerStats{};
+  solution_ = TreeState{};
+  heap_.clear();
+  live_edges_.clear();
+  const EdgeHandle root = tree_.reset(start);
+  Edge& r = tree_.edge(root);
+  r.priority = 1.0;
+  r.rho_m = rho_at(start);
+  best_ = TreeState{root, 0};
+  best_rho_ = r.rho_m;
+  register_edge(root);
+  if (goal_.contains(state_x(start), state_y(start))) solution_ = best_;
+  problem_set_ = true;
+  return Ok{};
+}
+
+template <VehicleModel V>
+SolveResult Planner<V>::solve(FunctionRef<bool()> should_stop) noexcept {
+  SolveResult result;
+  if (!problem_set_) return result;
+  for (;;) {
+    if (solved()) {
+      result.reason = StopReason::kGoalReached;
+      break;
+    }
+    if (should_stop()) {
+      result.reason = StopReason::kTerminationCondition;
+      break;
+    }
+    if (!tree_.has_room_for_propagation()) {
+      stats_.pool_exhausted = true;
+      result.reason = StopReason::kPoolExhausted;
+      break;
+    }
+    iterate();
+  }
+  result.status = solved() ? SolveStatus::kExactSolution
+                           : (best_.edge != kNoHandle ? SolveStatus::kApproximateSolution
+                                                      : SolveStatus::kNoSolution);
+  return result;
+}
+
+template <VehicleModel V>
+bool Planner<V>::iterate() noexcept {
+  ++stats_.iterations;
+  if (config_.selection != Selection::kGrip) return expand_from(select()) != kNoHandle;
+
+  // GRIP (section 2.2): pop the minimum score, propagate from a random state along it, and
+  // apply Eq. 2 to the parts of the selected edge whether or not the propagation succeeded.
+  const EdgeHandle selected = heap_.pop();
+  Edge& edge = tree_.edge(selected);
+  const std::uint16_t k =
+      edge.first == edge.last
+          ? edge.last
+          : static_cast<std::uint16_t>(edge.first + 1 + rng_.below(edge.last - edge.first));
+  const double new_priority = std::fma(2.0, edge.priority, 1.0);
+  const EdgeHandle added = expand_from(TreeState{selected, k});
+  tree_.edge(selected).priority = new_priority;
+  if (added != kNoHandle) {
+    // expand_from split `selected` at k when k was inside it: the head took its place.
+    const EdgeHandle head = tree_.edge(added).parent;
+    if (head != selected) {
+      Edge& h = tree_.edge(head);
+      h.priority = new_priority;
+      h.rho_m = edge_rho(head);
+      tree_.edge(selected).rho_m = edge_rho(selected);
+      push_scored(head);
+    }
+    Edge& n = tree_.edge(added);
+    n.priority = static_cast<double>(stats_.edges_added - 1);  // p(e) = i, edges before it
+    push_scored(added);
+  }
+  push_scored(selected);
+  return added != kNoHandle;
+}
+
+template <VehicleModel V>
+TreeState Planner<V>::select() noexcept {
+  if (config_.selection == Selection::kRandom) {
+    const EdgeHandle e = live_edges_[rng_.below(static_cast<std::uint32_t>(live_edges_.size()))];
+    const Edge& edge = tree_.edge(e);
+    const std::uint16_t k =
+        edge.first == edge.last
+            ? edge.last
+            : static_cast<std::uint16_t>(edge.first + 1 + rng_.below(edge.last - edge.first));
+    return TreeState{e, k};
+  }
+  return select_rrt();
+}
+
+template <VehicleModel V>
+TreeState Planner<V>::select_rrt() noexcept {
+  // RRT-EXTEND: a random free point, and the tree state nearest to it under rho_A*, found by
+  // a wavefront from the point that stops at the first cell holding a tree state.
+  std::uint32_t sample = 0;
+  if (config_.selection == Selection::kRrtBias && rng_.uniform01() < config_.rrt_goal_bias) {
+    sample = goal_cells_[rng_.below(static_cast<std::uint32_t>(goal_cells_.size()))];
+  } else {
+    sample = free_cells_[rng_.below(static_cast<std::uint32_t>(free_cells_.size()))];
+  }
+  const std::uint32_t cell = rho_field_.nearest_matching(
+      sample, [this](std::uint32_t c) { return cell_state_[c].edge != kNoHandle; });
+  if (cell == kNoHandle) return TreeState{tree_.root(), 0};
+  return resolve(cell_state_[cell]);
+}
+
+template <VehicleModel V>
+TreeState Planner<V>::resolve(TreeState s) const noexcept {
+  // Splitting keeps the tail under the old handle; states before its first index now belong
+  // to the heads above it.
+  if (s.edge == kNoHandle) return s;
+  while (s.index < tree_.edge(s.edge).first) s.edge = tree_.edge(s.edge).parent;
+  const Edge& edge = tree_.edge(s.edge);
+  if (s.index == edge.first && edge.parent != kNoHandle) {
+    return TreeState{edge.parent, tree_.edge(edge.parent).last};
+  }
+  return s;
+}
+
+template <VehicleModel V>
+EdgeHandle Planner<V>::expand_from(TreeState from) noexcept {
+  const TrajectoryHandle t = tree_.acquire_trajectory();
+  GRIP_ASSERT(t != kNoHandle);  // solve() checked the room
+  const Control u = vehicle_.sample_control(rng_);
+  const std::uint32_t steps = min_plan_steps_ + rng_.below(max_plan_steps_ - min_plan_steps_ + 1U);
+  const State start = tree_.edge_state(from.edge, from.index);
+  const std::uint32_t start_step = tree_.step_of(from.edge, from.index);
+  const Propagated p = propagate(t, start, start_step, u, steps);
+  if (p.last < min_edge_records_) {
+    tree_.release_trajectory(t);
+    return kNoHandle;
+  }
+  Trajectory& traj = tree_.trajectory(t);
+  traj.control = {u[0], u[1]};
+  traj.state_count = static_cast<std::uint16_t>(p.last + 1);
+
+  EdgeHandle attach = from.edge;
+  if (from.index < tree_.edge(from.edge).last) attach = tree_.split(from.edge, from.index);
+  const EdgeHandle added = tree_.add_child(attach, t, p.last);
+  Edge& n = tree_.edge(added);
+  n.rho_m = p.rho_m;
+  ++stats_.edges_added;
+  if (attach != from.edge) register_edge(attach);
+  register_edge(added);
+  if (p.rho_m < best_rho_) {
+    best_rho_ = p.rho_m;
+    best_ = TreeState{added, p.rho_index};
+  }
+  if (p.reached_goal) solution_ = TreeState{added, p.last};
+  return added;
+}
+
+template <VehicleModel V>
+typename Planner<V>::Propagated Planner<V>::propagate(TrajectoryHandle t, const State& from,
+                                                      std::uint32_t from_step, const Control& u,
+                                                      std::uint32_t steps) noexcept {
+  Propagated out;
+  const double dt = config_.integration_step_s;
+  const std::uint32_t per_record = config_.steps_per_record;
+  tree_.state(t, 0) = from;
+  State q = from;
+  std::uint16_t recorded = 0;
+  for (std::uint32_t j = 1; j <= steps; ++j) {
+    q = vehicle_.step(q, u, dt);
+    ++stats_.propagations;
+    if (!is_free(q)) break;  // t_free: the trajectory ends at the last free recorded state
+    // Safety at low cost: only the state reached at time T needs its contingency. If it
+    // collides, everything from T on is cut (Algorithm 1, "adjust t_free").
+    if (config_.safety == SafetyCheck::kAtHorizon && from_step + j == horizon_step_ &&
+        !contingency_safe(q)) {
+      break;
+    }
+    if (j % per_record != 0) continue;
+    tree_.state(t, ++recorded) = q;
+    const double rho = rho_at(q);
+    if (rho < out.rho_m) {
+      out.rho_m = rho;
+      out.rho_index = recorded;
+    }
+    if (goal_.contains(state_x(q), state_y(q))) {
+      out.reached_goal = true;
+      break;
+    }
+  }
+  if (config_.safety == SafetyCheck::kAllLeaves) {
+    // The Fig. 7 variant: the new leaf must be safe; walk back until a safe state is found.
+    while (recorded > 0 && !contingency_safe(tree_.state(t, recorded))) {
+      --recorded;
+      out.reached_goal = false;
+    }
+    if (out.rho_index > recorded) {
+      out.rho_m = std::numeric_limits<double>::infinity();
+      for (std::uint16_t k = 1; k <= recorded; ++k) {
+        const double rho = rho_at(tree_.state(t, k));
+        if (rho < out.rho_m) {
+          out.rho_m = rho;
+          out.rho_index = k;
+        }
+      }
+    }
+  }
+  out.last = recorded;
+  return out;
+}
+
+template <VehicleModel V>
+bool Planner<V>::is_free(const State& q) noexcept {
+  ++stats_.collision_checks;
+  return checker_.is_free(state_x(q), state_y(q), state_theta(q));
+}
+
+template <VehicleModel V>
+bool Planner<V>::contingency_safe(const State& q) noexcept {
+  ++stats_.contingency_checks;
+  return contingency_is_collision_free(vehicle_, checker_, q, config_.integration_step_s,
+                                       stats_.collision_checks);
+}
+
+template <VehicleModel V>
+double Planner<V>::edge_rho(EdgeHandle e) const noexcept {
+  // Eq. 1 over the recorded states of the edge (its first state belongs to its parent).
+  const Edge& edge = tree_.edge(e);
+  double rho = std::numeric_limits<double>::infinity();
+  const int first = edge.parent == kNoHandle ? edge.first : edge.first + 1;
+  for (int k = first; k <= edge.last; ++k) {
+    rho = std::min(rho, rho_at(tree_.state(edge.trajectory, static_cast<std::uint32_t>(k))));
+  }
+  return rho;
+}
+
+template <VehicleModel V>
+double Planner<V>::score(const Edge& e) const noexcept {
+  // ln s(e) = p(e) ln a + ln rho(e, F) (Eq. 3 in log space). Unreachable edges score +inf.
+  return e.priority * log_a_ + std::log(std::max(e.rho_m, kRhoFloorM));
+}
+
+template <VehicleModel V>
+void Planner<V>::push_scored(EdgeHandle e) noexcept {
+  const bool pushed = heap_.push(e, score(tree_.edge(e)));
+  GRIP_ASSERT(pushed);  // the heap holds as many entries as the edge pool
+}
+
+template <VehicleModel V>
+void Planner<V>::register_edge(EdgeHandle e) noexcept {
+  switch (config_.selection) {
+    case Selection::kGrip:
+      if (e == tree_.root()) push_scored(e);
+      break;
+    case Selection::kRandom:
+      GRIP_ASSERT(live_edges_.push_back(e));  // sized to the edge pool
+      break;
+    case Selection::kRrt:
+    case Selection::kRrtBias: {
+      const Edge& edge = tree_.edge(e);
+      for (int k = edge.first; k <= edge.last; ++k) {
+        const State& q = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
+        int cx = 0;
+        int cy = 0;
+        if (!grid_->to_cell(state_x(q), state_y(q), cx, cy)) continue;
+        TreeState& slot = cell_state_[grid_->index(cx, cy)];
+        if (slot.edge == kNoHandle) slot = TreeState{e, static_cast<std::uint16_t>(k)};
+      }
+      break;
+    }
+  }
+}
+
+template <VehicleModel V>
+TreeState Planner<V>::best_state() const noexcept {
+  return resolve(solved() ? solution_ : best_);
+}
+
+template <VehicleModel V>
+bool Planner<V>::extract_plan(TreeState s, VectorView<PlanStep>& out) const noexcept {
+  out.clear();
+  s = resolve(s);
+  if (s.edge == kNoHandle) return true;
+  const double record_step = config_.record_step_s();
+  // Count the pieces first (consecutive edges of one trajectory merge into one), then fill
+  // from the back, so that no buffer is needed for the walk up the tree.
+  std::size_t pieces = 0;
+  TrajectoryHandle previous = kNoHandle;
+  for (EdgeHandle e = s.edge; e != kNoHandle; e = tree_.edge(e).parent) {
+    const Edge& edge = tree_.edge(e);
+    const std::uint16_t last = e == s.edge ? s.index : edge.last;
+    if (last == edge.first) continue;
+    if (edge.trajectory != previous) ++pieces;
+    previous = edge.trajectory;
+  }
+  if (pieces > out.capacity()) return false;
+  for (std::size_t i = 0; i < pieces; ++i) GRIP_ASSERT(out.push_back(PlanStep{}));
+  std::size_t slot = pieces;
+  previous = kNoHandle;
+  for (EdgeHandle e = s.edge; e != kNoHandle; e = tree_.edge(e).parent) {
+    const Edge& edge = tree_.edge(e);
+    const std::uint16_t last = e == s.edge ? s.index : edge.last;
+    if (last == edge.first) continue;
+    const double duration = (last - edge.first) * record_step;
+    if (edge.trajectory == previous) {
+      out[slot].duration_s += duration;
+    } else {
+      --slot;
+      out[slot].control = tree_.trajectory(edge.trajectory).control;
+      out[slot].duration_s = duration;
+    }
+    previous = edge.trajectory;
+  }
+  return true;
+}
+
+template class Planner<DdVelocity>;
+template class Planner<DdAcceleration>;
+template class Planner<Car>;
+
+}  // namespace grip

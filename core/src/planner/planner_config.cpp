@@ -1,0 +1,90 @@
+#include "grip/planner/planner_config.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace grip {
+
+std::string_view selection_name(Selection s) noexcept {
+  switch (s) {
+    case Selection::kGrip:
+      return "grip";
+    case Selection::kRandom:
+      return "random";
+    case Selection::kRrt:
+      return "rrt";
+    case Selection::kRrtBias:
+      return "rrt-bias";
+  }
+  return "unknown";
+}
+
+Result<Selection> selection_from_name(std::string_view name) {
+  for (Selection s : {Selection::kGrip, Selection::kRandom, Selection::kRrt, Selection::kRrtBias}) {
+    if (selection_name(s) == name) return s;
+  }
+  return invalid_argument("unknown planner '" + std::string(name) +
+                          "' (expected one of: grip, random, rrt, rrt-bias)");
+}
+
+std::uint32_t PlannerConfig::states_per_trajectory() const noexcept {
+  return static_cast<std::uint32_t>(std::ceil(max_plan_duration_s / record_step_s() - 1e-9)) + 1U;
+}
+
+namespace {
+Status positive(const char* name, double v) {
+  if (!std::isfinite(v) || v <= 0.0) {
+    return invalid_argument(std::string("planner.") + name + " must be a finite number > 0 (got " +
+                            std::to_string(v) + ")");
+  }
+  return Ok{};
+}
+}  // namespace
+
+Status PlannerConfig::validate() const {
+  if (max_edges < 3) {
+    return invalid_argument("planner.max_edges must be >= 3 (got " + std::to_string(max_edges) +
+                            ")");
+  }
+  if (max_trajectories < 2) {
+    return invalid_argument("planner.max_trajectories must be >= 2 (got " +
+                            std::to_string(max_trajectories) + ")");
+  }
+  if (auto s = positive("integration_step_s", integration_step_s); !s) return s;
+  if (steps_per_record == 0) {
+    return invalid_argument("planner.steps_per_record must be >= 1 (got 0)");
+  }
+  if (auto s = positive("min_plan_duration_s", min_plan_duration_s); !s) return s;
+  if (auto s = positive("max_plan_duration_s", max_plan_duration_s); !s) return s;
+  if (min_plan_duration_s > max_plan_duration_s) {
+    return invalid_argument("planner.min_plan_duration_s (" + std::to_string(min_plan_duration_s) +
+                            ") exceeds max_plan_duration_s (" +
+                            std::to_string(max_plan_duration_s) + ")");
+  }
+  if (max_plan_duration_s < record_step_s()) {
+    return invalid_argument("planner.max_plan_duration_s (" + std::to_string(max_plan_duration_s) +
+                            ") is shorter than one record step (" +
+                            std::to_string(record_step_s()) + " s)");
+  }
+  if (states_per_trajectory() > 65535) {
+    return invalid_argument("planner.max_plan_duration_s / record step exceeds 65534 states");
+  }
+  if (!std::isfinite(min_edge_duration_s) || min_edge_duration_s < 0.0 ||
+      min_edge_duration_s > max_plan_duration_s) {
+    return invalid_argument(
+        "planner.min_edge_duration_s must be in [0, max_plan_duration_s] (got " +
+        std::to_string(min_edge_duration_s) + ")");
+  }
+  if (!std::isfinite(score_base_a) || score_base_a <= 1.0) {
+    return invalid_argument("planner.score_base_a must be a finite number > 1 (got " +
+                            std::to_string(score_base_a) + ")");
+  }
+  if (auto s = positive("safety_horizon_s", safety_horizon_s); !s) return s;
+  if (!std::isfinite(rrt_goal_bias) || rrt_goal_bias < 0.0 || rrt_goal_bias > 1.0) {
+    return invalid_argument("planner.rrt_goal_bias must be in [0, 1] (got " +
+                            std::to_string(rrt_goal_bias) + ")");
+  }
+  return Ok{};
+}
+
+}  // namespace grip

@@ -1,0 +1,151 @@
+#include "grip/world/clearance_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "validation.hpp"
+
+namespace grip {
+
+namespace {
+
+// 1-D squared distance transform of the sampled function f over 0..n-1 (Felzenszwalb &
+// Huttenlocher, "Distance Transforms of Sampled Functions", 2012): d[q] = min_p (q - p)^2 + f[p].
+// All f are finite integers here; the parabola intersections are exact rationals whose
+// comparison with the integers q is decided exactly in double (correctly rounded division).
+void transform_1d(const std::int64_t* f, int n, std::int64_t* d, int* v, double* z) noexcept {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  int k = 0;
+  v[0] = 0;
+  z[0] = -kInf;
+  z[1] = kInf;
+  for (int q = 1; q < n; ++q) {
+    double s = 0.0;
+    while (true) {
+      const int p = v[k];
+      const std::int64_t numerator = (f[q] + std::int64_t{q} * q) - (f[p] + std::int64_t{p} * p);
+      s = static_cast<double>(numerator) / static_cast<double>(2 * (q - p));
+      if (s > z[k]) {
+        break;
+      }
+      --k;  // z[0] = -inf ends this loop with k >= 0
+    }
+    ++k;
+    v[k] = q;
+    z[k] = s;
+    z[k + 1] = kInf;
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (z[k + 1] < q) {
+      ++k;
+    }
+    const std::int64_t offset = q - v[k];
+    d[q] = offset * offset + f[v[k]];
+  }
+}
+
+}  // namespace
+
+ClearanceMap::ClearanceMap(int width_cells, int height_cells, double resolution_m)
+    : width_(width_cells),
+      height_(height_cells),
+      resolution_(resolution_m),
+      half_diagonal_m_(resolution_m * std::sqrt(0.5)),
+      d2_(static_cast<std::size_t>(width_cells) * static_cast<std::size_t>(height_cells), 0) {
+  const auto longest = static_cast<std::size_t>(std::max(width_cells, height_cells)) + 2;
+  f_.resize(longest);
+  d_.resize(longest);
+  v_.resize(longest);
+  z_.resize(longest + 1);
+}
+
+Result<ClearanceMap> ClearanceMap::create(int width_cells, int height_cells, double resolution_m) {
+  if (auto error =
+          detail::check_grid_size("ClearanceMap", width_cells, height_cells, resolution_m)) {
+    return *std::move(error);
+  }
+  return ClearanceMap(width_cells, height_cells, resolution_m);
+}
+
+Result<ClearanceMap> ClearanceMap::create_for(const OccupancyGrid& grid) {
+  auto map = create(grid.width(), grid.height(), grid.resolution());
+  if (map.ok()) {
+    map->compute(grid);
+  }
+  return map;
+}
+
+void ClearanceMap::compute(const OccupancyGrid& grid) noexcept {
+  GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
+              grid.resolution() == resolution_);
+  const auto w = static_cast<std::size_t>(width_);
+  const auto h = static_cast<std::size_t>(height_);
+  const std::span<const Cell> cells = grid.cells();
+
+  // Pass 1, per column: distance in cells to the nearest non-free cell of the same column, the
+  // rows -1 and height (outside) counting as non-free. Stored in d2_ for now.
+  for (std::size_t x = 0; x < w; ++x) {
+    std::int64_t last = -1;
+    for (std::size_t y = 0; y < h; ++y) {
+      const std::size_t i = y * w + x;
+      if (cells[i] != Cell::kFree) {
+        last = static_cast<std::int64_t>(y);
+      }
+      d2_[i] = static_cast<std::uint32_t>(static_cast<std::int64_t>(y) - last);
+    }
+    last = static_cast<std::int64_t>(h);
+    for (std::size_t y = h; y-- > 0;) {
+      const std::size_t i = y * w + x;
+      if (cells[i] != Cell::kFree) {
+        last = static_cast<std::int64_t>(y);
+      }
+      const auto below = static_cast<std::uint32_t>(last - static_cast<std::int64_t>(y));
+      d2_[i] = std::min(d2_[i], below);
+    }
+  }
+
+  // Pass 2, per row: squared Euclidean distance over positions -1..width (the outside columns
+  // -1 and width are non-free in every row, so f = 0 there).
+  const int n = width_ + 2;
+  for (std::size_t y = 0; y < h; ++y) {
+    std::uint32_t* row = d2_.data() + y * w;
+    f_[0] = 0;
+    for (std::size_t x = 0; x < w; ++x) {
+      const auto g = static_cast<std::int64_t>(row[x]);
+      f_[x + 1] = g * g;
+    }
+    f_[w + 1] = 0;
+    transform_1d(f_.data(), n, d_.data(), v_.data(), z_.data());
+    for (std::size_t x = 0; x < w; ++x) {
+      row[x] = static_cast<std::uint32_t>(d_[x + 1]);
+    }
+  }
+  source_revision_ = grid.revision();
+  computed_ = true;
+}
+
+double ClearanceMap::clearance_m(std::uint32_t index) const noexcept {
+  const std::uint32_t d2 = squared_cells(index);
+  if (d2 == 0) {
+    return 0.0;
+  }
+  return std::sqrt(static_cast<double>(d2)) * resolution_ - half_diagonal_m_;
+}
+
+std::uint32_t ClearanceMap::squared_cells_at_least(double min_clearance_m) const noexcept {
+  if (!(min_clearance_m > 0.0)) {
+    return 0;
+  }
+  // clearance_m >= c  <=>  sqrt(d2) * res >= c + hd  <=>  d2 >= ((c + hd) / res)^2.
+  const double q = (min_clearance_m + half_diagonal_m_) / resolution_;
+  const double q2 = q * q * (1.0 + 1e-12);
+  constexpr double kMax = static_cast<double>(std::numeric_limits<std::uint32_t>::max());
+  if (!(q2 < kMax)) {
+    return std::numeric_limits<std::uint32_t>::max();
+  }
+  return static_cast<std::uint32_t>(std::ceil(q2));
+}
+
+}  // namespace grip

@@ -1,0 +1,313 @@
+#include "grip/world/distance_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "validation.hpp"
+
+namespace grip {
+
+namespace {
+
+constexpr std::uint32_t kInf = DistanceField::kUnreachable;
+
+// Labels of the field: a plain array, kInf meaning "not reached".
+struct PlainLabels {
+  std::uint32_t* cost;
+  std::uint32_t get(std::uint32_t p) const noexcept { return cost[p]; }
+  void set(std::uint32_t p, std::uint32_t c) const noexcept { cost[p] = c; }
+};
+
+// Labels of nearest_matching: valid only where stamped with the current generation, so a query
+// never has to clear the whole array.
+struct StampedLabels {
+  std::uint32_t* cost;
+  std::uint32_t* stamp;
+  std::uint32_t generation;
+  std::uint32_t get(std::uint32_t p) const noexcept {
+    return stamp[p] == generation ? cost[p] : kInf;
+  }
+  void set(std::uint32_t p, std::uint32_t c) const noexcept {
+    cost[p] = c;
+    stamp[p] = generation;
+  }
+};
+
+// Dial's algorithm over the padded grid. The queue holds `queued` seeds at cost 0 (already
+// labelled and linked into bucket 0). on_settle(p, cost) is called for each settled cell in
+// nondecreasing cost; returning true stops the search.
+template <std::uint32_t kBuckets, typename Labels, typename OnSettle>
+void run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::uint32_t* next,
+              std::uint32_t* prev, std::uint32_t* head, Labels labels, std::uint32_t queued,
+              OnSettle&& on_settle) noexcept {
+  constexpr std::uint32_t kNil = DistanceField::kNoCell;
+  const auto link = [&](std::uint32_t p, std::uint32_t bucket) {
+    const std::uint32_t first = head[bucket];
+    next[p] = first;
+    prev[p] = kNil;
+    if (first != kNil) {
+      prev[first] = p;
+    }
+    head[bucket] = p;
+  };
+  const auto unlink = [&](std::uint32_t p, std::uint32_t bucket) {
+    if (prev[p] != kNil) {
+      next[prev[p]] = next[p];
+    } else {
+      head[bucket] = next[p];
+    }
+    if (next[p] != kNil) {
+      prev[next[p]] = prev[p];
+    }
+  };
+  const auto relax = [&](std::uint32_t p, std::uint32_t cost) {
+    const std::uint32_t old = labels.get(p);
+    if (cost < old) {
+      if (old != kInf) {
+        unlink(p, old % kBuckets);
+      } else {
+        ++queued;
+      }
+      labels.set(p, cost);
+      link(p, cost % kBuckets);
+    }
+  };
+
+  const std::uint32_t w = padded_width;
+  std::uint32_t cost = 0;
+  std::uint32_t bucket = 0;
+  while (queued > 0) {
+    while (head[bucket] == kNil) {
+      ++cost;
+      bucket = bucket + 1 == kBuckets ? 0 : bucket + 1;
+    }
+    const std::uint32_t u = head[bucket];
+    head[bucket] = next[u];
+    if (next[u] != kNil) {
+      prev[next[u]] = kNil;
+    }
+    --queued;
+    if (on_settle(u, cost)) {
+      return;
+    }
+    const std::uint32_t straight = cost + DistanceField::kOrthogonalCost;
+    const std::uint32_t diagonal = cost + DistanceField::kDiagonalCost;
+    const bool east = traversable[u + 1] != 0;
+    const bool west = traversable[u - 1] != 0;
+    const bool north = traversable[u + w] != 0;
+    const bool south = traversable[u - w] != 0;
+    if (east) relax(u + 1, straight);
+    if (west) relax(u - 1, straight);
+    if (north) relax(u + w, straight);
+    if (south) relax(u - w, straight);
+    // Diagonals only between two traversable orthogonal neighbours: no corner cutting.
+    if (north && east && traversable[u + w + 1] != 0) relax(u + w + 1, diagonal);
+    if (north && west && traversable[u + w - 1] != 0) relax(u + w - 1, diagonal);
+    if (south && east && traversable[u - w + 1] != 0) relax(u - w + 1, diagonal);
+    if (south && west && traversable[u - w - 1] != 0) relax(u - w - 1, diagonal);
+  }
+}
+
+}  // namespace
+
+DistanceField::DistanceField(int width_cells, int height_cells, double resolution_m,
+                             ClearanceMap clearance)
+    : width_(width_cells),
+      height_(height_cells),
+      resolution_(resolution_m),
+      inv_resolution_(1.0 / resolution_m),
+      metres_per_unit_(resolution_m / kCostUnitsPerCell),
+      padded_width_(static_cast<std::uint32_t>(width_cells) + 2),
+      clearance_(std::move(clearance)) {
+  const std::size_t padded_cells =
+      static_cast<std::size_t>(width_cells + 2) * static_cast<std::size_t>(height_cells + 2);
+  traversable_.assign(padded_cells, 0);
+  for (Search* search : {&field_, &scratch_}) {
+    search->cost.assign(padded_cells, kInf);
+    search->next.assign(padded_cells, kNil);
+    search->prev.assign(padded_cells, kNil);
+    std::fill(std::begin(search->head), std::end(search->head), kNil);
+  }
+  stamp_.assign(padded_cells, 0);
+}
+
+Result<DistanceField> DistanceField::create(int width_cells, int height_cells,
+                                            double resolution_m) {
+  if (auto error =
+          detail::check_grid_size("DistanceField", width_cells, height_cells, resolution_m)) {
+    return *std::move(error);
+  }
+  auto clearance = ClearanceMap::create(width_cells, height_cells, resolution_m);
+  if (!clearance.ok()) {
+    return clearance.error();
+  }
+  return DistanceField(width_cells, height_cells, resolution_m, std::move(clearance).value());
+}
+
+std::uint32_t DistanceField::padded(std::uint32_t cell_index) const noexcept {
+  const auto w = static_cast<std::uint32_t>(width_);
+  return (cell_index / w + 1) * padded_width_ + cell_index % w + 1;
+}
+
+std::uint32_t DistanceField::unpadded(std::uint32_t padded_index) const noexcept {
+  const std::uint32_t y = padded_index / padded_width_ - 1;
+  const std::uint32_t x = padded_index % padded_width_ - 1;
+  return y * static_cast<std::uint32_t>(width_) + x;
+}
+
+void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* clearance,
+                               double inflation_m) noexcept {
+  GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
+              grid.resolution() == resolution_);
+  GRIP_ASSERT(std::isfinite(inflation_m) && inflation_m >= 0.0);
+  const std::span<const Cell> cells = grid.cells();
+  const std::uint32_t min_d2 =
+      clearance != nullptr ? clearance->squared_cells_at_least(inflation_m) : 0;
+  const auto w = static_cast<std::size_t>(width_);
+  for (std::size_t y = 0; y < static_cast<std::size_t>(height_); ++y) {
+    std::uint8_t* out = traversable_.data() + (y + 1) * padded_width_ + 1;
+    const Cell* in = cells.data() + y * w;
+    if (min_d2 == 0) {
+      for (std::size_t x = 0; x < w; ++x) {
+        out[x] = in[x] == Cell::kFree ? 1 : 0;
+      }
+    } else {
+      const std::uint32_t* d2 = clearance->squared_cells().data() + y * w;
+      for (std::size_t x = 0; x < w; ++x) {
+        out[x] = (in[x] == Cell::kFree && d2[x] >= min_d2) ? 1 : 0;
+      }
+    }
+  }
+  origin_x_m_ = grid.origin_x();
+  origin_y_m_ = grid.origin_y();
+  inflation_m_ = inflation_m;
+  source_revision_ = grid.revision();
+}
+
+void DistanceField::prepare(const OccupancyGrid& grid, double inflation_m) noexcept {
+  if (inflation_m > 0.0) {
+    clearance_.compute(grid);
+    build_mask(grid, &clearance_, inflation_m);
+  } else {
+    build_mask(grid, nullptr, inflation_m);
+  }
+}
+
+void DistanceField::prepare(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                            double inflation_m) noexcept {
+  GRIP_ASSERT(clearance.width() == width_ && clearance.height() == height_ &&
+              clearance.resolution() == resolution_);
+  if (inflation_m > 0.0) {
+    GRIP_ASSERT(clearance.computed() && clearance.source_revision() == grid.revision());
+    build_mask(grid, &clearance, inflation_m);
+  } else {
+    build_mask(grid, nullptr, inflation_m);
+  }
+}
+
+std::uint32_t DistanceField::compute(const OccupancyGrid& grid,
+                                     std::span<const std::uint32_t> target_cells,
+                                     double inflation_m) noexcept {
+  prepare(grid, inflation_m);
+  return propagate(target_cells);
+}
+
+std::uint32_t DistanceField::compute(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                                     std::span<const std::uint32_t> target_cells,
+                                     double inflation_m) noexcept {
+  prepare(grid, clearance, inflation_m);
+  return propagate(target_cells);
+}
+
+std::uint32_t DistanceField::propagate(std::span<const std::uint32_t> target_cells) noexcept {
+  std::fill(field_.cost.begin(), field_.cost.end(), kInf);
+  std::fill(std::begin(field_.head), std::end(field_.head), kNil);
+  std::uint32_t queued = 0;
+  for (const std::uint32_t target : target_cells) {
+    GRIP_ASSERT(target < cell_count());
+    const std::uint32_t p = padded(target);
+    if (field_.cost[p] != 0) {
+      field_.cost[p] = 0;
+      field_.next[p] = field_.head[0];
+      field_.prev[p] = kNil;
+      if (field_.head[0] != kNil) {
+        field_.prev[field_.head[0]] = p;
+      }
+      field_.head[0] = p;
+      ++queued;
+    }
+  }
+  std::uint32_t settled = 0;
+  run_dial<kBuckets>(traversable_.data(), padded_width_, field_.next.data(), field_.prev.data(),
+                     field_.head, PlainLabels{field_.cost.data()}, queued,
+                     [&settled](std::uint32_t, std::uint32_t) {
+                       ++settled;
+                       return false;
+                     });
+  return settled;
+}
+
+std::uint32_t DistanceField::cost_at(std::uint32_t cell_index) const noexcept {
+  GRIP_ASSERT(cell_index < cell_count());
+  return field_.cost[padded(cell_index)];
+}
+
+double DistanceField::at(std::uint32_t cell_index) const noexcept {
+  const std::uint32_t cost = cost_at(cell_index);
+  return cost == kInf ? std::numeric_limits<double>::infinity() : cost * metres_per_unit_;
+}
+
+bool DistanceField::traversable(std::uint32_t cell_index) const noexcept {
+  GRIP_ASSERT(cell_index < cell_count());
+  return traversable_[padded(cell_index)] != 0;
+}
+
+double DistanceField::distance_m(double x_m, double y_m) const noexcept {
+  const double u = (x_m - origin_x_m_) * inv_resolution_;
+  const double v = (y_m - origin_y_m_) * inv_resolution_;
+  if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const std::uint32_t p =
+      (static_cast<std::uint32_t>(v) + 1) * padded_width_ + static_cast<std::uint32_t>(u) + 1;
+  const std::uint32_t cost = field_.cost[p];
+  return cost == kInf ? std::numeric_limits<double>::infinity() : cost * metres_per_unit_;
+}
+
+std::uint32_t DistanceField::nearest_matching(std::uint32_t start_cell,
+                                              FunctionRef<bool(std::uint32_t)> is_target,
+                                              double* distance_m) noexcept {
+  GRIP_ASSERT(start_cell < cell_count());
+  ++generation_;
+  if (generation_ == 0) {  // wrapped: old stamps could alias the new generation
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    generation_ = 1;
+  }
+  std::fill(std::begin(scratch_.head), std::end(scratch_.head), kNil);
+  const StampedLabels labels{scratch_.cost.data(), stamp_.data(), generation_};
+  const std::uint32_t start = padded(start_cell);
+  labels.set(start, 0);
+  scratch_.next[start] = kNil;
+  scratch_.prev[start] = kNil;
+  scratch_.head[0] = start;
+
+  std::uint32_t found = kNoCell;
+  std::uint32_t found_cost = kInf;
+  run_dial<kBuckets>(traversable_.data(), padded_width_, scratch_.next.data(), scratch_.prev.data(),
+                     scratch_.head, labels, 1, [&](std::uint32_t p, std::uint32_t cost) {
+                       const std::uint32_t cell = unpadded(p);
+                       if (is_target(cell)) {
+                         found = cell;
+                         found_cost = cost;
+                         return true;
+                       }
+                       return false;
+                     });
+  if (distance_m != nullptr) {
+    *distance_m =
+        found == kNoCell ? std::numeric_limits<double>::infinity() : found_cost * metres_per_unit_;
+  }
+  return found;
+}
+
+}  // namespace grip

@@ -1,0 +1,90 @@
+// The planning loop allocates nothing: every call into malloc/calloc/realloc/free/operator new
+// made while solve() runs is counted by the interposed allocator, for every vehicle and every
+// selection strategy. The counter is first proven to fire on deliberate allocations.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <memory>
+#include <vector>
+
+#include "grip/planner/planner.hpp"
+#include "grip/platform/alloc_counter.hpp"
+#include "grip/scenes/scenes.hpp"
+
+namespace grip {
+namespace {
+
+class PlanningLoopAllocationTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(alloc_counter::interposed()) << "grip_alloc_counter is not the process allocator";
+  }
+
+  template <VehicleModel V>
+  std::uint64_t allocations_while_solving(const V& vehicle, Selection selection,
+                                          SafetyCheck safety) {
+    const Scene scene = make_scene(SceneId::kLabyrinth).value();
+    PlannerConfig config;
+    config.selection = selection;
+    config.safety = safety;
+    config.max_edges = 8000;
+    config.max_trajectories = 4000;
+    auto planner = Planner<V>::create(vehicle, scene.grid, config).value();
+    EXPECT_TRUE(planner.set_problem(
+        vehicle.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad),
+        GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+    BoundedVector<PlanStep> plan(4096);
+    const PlannerStats& stats = planner.stats();
+
+    alloc_counter::arm();
+    const SolveResult result = planner.solve([&] { return stats.edges_added >= 1500; });
+    const bool extracted = planner.extract_plan(planner.best_state(), plan);
+    alloc_counter::disarm();
+
+    EXPECT_TRUE(extracted);
+    EXPECT_NE(result.status, SolveStatus::kNoSolution);
+    EXPECT_GE(stats.edges_added, 1000U);  // the loop did real work while counted
+    return alloc_counter::counts().allocations + alloc_counter::counts().deallocations;
+  }
+};
+
+// Stores through a volatile pointer so that the compiler cannot elide the allocations.
+void* volatile g_sink = nullptr;
+
+TEST_F(PlanningLoopAllocationTest, TheCounterFiresOnDeliberateAllocations) {
+  alloc_counter::arm();
+  g_sink = std::malloc(64);
+  std::free(g_sink);
+  int* boxed = new int(3);
+  g_sink = boxed;
+  delete boxed;
+  std::vector<double> v(100);
+  g_sink = v.data();
+  alloc_counter::disarm();
+  EXPECT_EQ(alloc_counter::counts().allocations, 3U);
+  EXPECT_EQ(alloc_counter::counts().deallocations, 2U);
+}
+
+TEST_F(PlanningLoopAllocationTest, GripAllocatesNothingForAnyVehicle) {
+  EXPECT_EQ(allocations_while_solving(DdVelocity::create({}).value(), Selection::kGrip,
+                                      SafetyCheck::kAtHorizon),
+            0U);
+  EXPECT_EQ(allocations_while_solving(DdAcceleration::create({}).value(), Selection::kGrip,
+                                      SafetyCheck::kAtHorizon),
+            0U);
+  EXPECT_EQ(
+      allocations_while_solving(Car::create({}).value(), Selection::kGrip, SafetyCheck::kAtHorizon),
+      0U);
+}
+
+TEST_F(PlanningLoopAllocationTest, TheAllLeavesVariantAndTheBaselinesAllocateNothing) {
+  const Car car = Car::create({}).value();
+  EXPECT_EQ(allocations_while_solving(car, Selection::kGrip, SafetyCheck::kAllLeaves), 0U);
+  EXPECT_EQ(allocations_while_solving(car, Selection::kRandom, SafetyCheck::kAtHorizon), 0U);
+  EXPECT_EQ(allocations_while_solving(car, Selection::kRrt, SafetyCheck::kAtHorizon), 0U);
+  EXPECT_EQ(allocations_while_solving(car, Selection::kRrtBias, SafetyCheck::kAtHorizon), 0U);
+}
+
+}  // namespace
+}  // namespace grip

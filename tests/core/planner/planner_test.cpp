@@ -1,0 +1,300 @@
+#include "grip/planner/planner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "test_worlds.hpp"
+
+namespace grip {
+namespace {
+
+// Stops after n iterations (selections) of the planner.
+struct StopAfterIterations {
+  const PlannerStats* stats;
+  std::uint64_t n;
+  bool operator()() const { return stats->iterations >= n; }
+};
+
+struct StopAfterEdges {
+  const PlannerStats* stats;
+  std::uint64_t n;
+  bool operator()() const { return stats->edges_added >= n; }
+};
+
+class GripBookkeepingTest : public ::testing::Test {
+ protected:
+  OccupancyGrid grid = test::walled_room(12.0);
+  DdAcceleration robot = DdAcceleration::create(DdAccelerationParams{}).value();
+  PlannerConfig config;
+  std::optional<Planner<DdAcceleration>> planner;
+
+  void SetUp() override {
+    config.max_edges = 2000;
+    config.max_trajectories = 1000;
+    config.seed = 11;
+    planner.emplace(Planner<DdAcceleration>::create(robot, grid, config).value());
+    ASSERT_TRUE(planner->set_problem(robot.rest_state(2, 2, 0), GoalRegion{10, 10, 0.8}));
+  }
+  void iterate_once() {
+    StopAfterIterations stop{&planner->stats(), planner->stats().iterations + 1};
+    (void)planner->solve(stop);
+  }
+};
+
+TEST_F(GripBookkeepingTest, FirstIterationExpandsTheRootAndAppliesEq2) {
+  const EdgeHandle root = planner->tree().root();
+  EXPECT_EQ(planner->peek_selection(), root);
+  iterate_once();
+  ASSERT_EQ(planner->stats().edges_added, 1U);
+  const EdgeHandle child = planner->tree().edge(root).first_child;
+  ASSERT_NE(child, kNoHandle);
+  EXPECT_EQ(planner->tree().edge(root).priority, 3.0);   // 2 * 1 + 1
+  EXPECT_EQ(planner->tree().edge(child).priority, 0.0);  // i = 0 edges before it
+  EXPECT_EQ(planner->heap_size(), 2U);
+}
+
+TEST_F(GripBookkeepingTest, SelectedEdgePartsGetTwicePlusOneAndTheNewEdgeGetsTheIterationCount) {
+  for (int round = 0; round < 200; ++round) {
+    const EdgeHandle selected = planner->peek_selection();
+    ASSERT_NE(selected, kNoHandle);
+    const double p_before = planner->tree().edge(selected).priority;
+    const std::uint16_t first_before = planner->tree().edge(selected).first;
+    const std::uint64_t edges_before = planner->stats().edges_added;
+    iterate_once();
+    const Edge& tail = planner->tree().edge(selected);
+    EXPECT_EQ(tail.priority, 2.0 * p_before + 1.0);
+    if (planner->stats().edges_added == edges_before) continue;  // t_free below the minimum
+    // A split keeps the tail under the selected handle and puts the head above it; the new
+    // edge hangs where the split happened (or at the selected edge's end), newest child first.
+    const bool was_split = tail.first != first_before;
+    const EdgeHandle attach = was_split ? tail.parent : selected;
+    const EdgeHandle added = planner->tree().edge(attach).first_child;
+    ASSERT_NE(added, kNoHandle);
+    ASSERT_NE(added, selected);
+    EXPECT_EQ(planner->tree().edge(added).priority, static_cast<double>(edges_before));
+    if (was_split) {
+      EXPECT_EQ(planner->tree().edge(attach).priority, 2.0 * p_before + 1.0);
+    }
+  }
+}
+
+TEST_F(GripBookkeepingTest, ScoresAreEq3InLogSpaceAndRhoIsEq1OverTheEdgesStates) {
+  StopAfterEdges stop{&planner->stats(), 300};
+  (void)planner->solve(stop);
+  const double log_a = std::log(config.score_base_a);
+  std::size_t checked = 0;
+  planner->visit_edges([&](EdgeHandle e, const Edge& edge) {
+    double rho = INFINITY;
+    const int first = edge.parent == kNoHandle ? edge.first : edge.first + 1;
+    for (int k = first; k <= edge.last; ++k) {
+      const auto& q = planner->tree().state(edge.trajectory, static_cast<std::uint32_t>(k));
+      rho = std::min(rho, planner->rho_field().distance_m(q[0], q[1]));
+    }
+    EXPECT_DOUBLE_EQ(edge.rho_m, rho);
+    EXPECT_DOUBLE_EQ(planner->log_score(e), edge.priority * log_a + std::log(std::max(rho, 1e-3)));
+    ++checked;
+  });
+  EXPECT_GT(checked, 300U);
+}
+
+TEST_F(GripBookkeepingTest, TheHeapAlwaysSelectsTheMinimumScore) {
+  StopAfterEdges stop{&planner->stats(), 200};
+  (void)planner->solve(stop);
+  const EdgeHandle next = planner->peek_selection();
+  const double best = planner->log_score(next);
+  planner->visit_edges([&](EdgeHandle e, const Edge&) { EXPECT_GE(planner->log_score(e), best); });
+  EXPECT_EQ(planner->heap_size(), planner->tree().edge_count());
+}
+
+// End-to-end solves: every vehicle with every selection reaches the goal, and the plan, replayed
+// through the model from the start, stays collision-free and ends in the goal region.
+struct SolveCase {
+  VehicleKind vehicle;
+  Selection selection;
+};
+
+class EndToEndSolveTest : public ::testing::TestWithParam<SolveCase> {
+ protected:
+  template <VehicleModel V>
+  void solve_and_replay(const V& vehicle) {
+    const OccupancyGrid grid = test::room_with_wall();
+    PlannerConfig config;
+    config.selection = GetParam().selection;
+    config.seed = 5;
+    config.max_edges = 60'000;
+    config.max_trajectories = 30'000;
+    auto planner = Planner<V>::create(vehicle, grid, config).value();
+    const GoalRegion goal{9.5, 2.0, 1.0};
+    ASSERT_TRUE(planner.set_problem(vehicle.rest_state(2.0, 2.0, 0.0), goal));
+    const auto result = planner.solve([] { return false; });
+    ASSERT_EQ(result.status, SolveStatus::kExactSolution) << stop_reason_name(result.reason);
+    ASSERT_TRUE(planner.solved());
+
+    BoundedVector<PlanStep> plan(4096);
+    ASSERT_TRUE(planner.extract_plan(planner.best_state(), plan));
+    ASSERT_GT(plan.size(), 0U);
+    auto q = vehicle.rest_state(2.0, 2.0, 0.0);
+    const double dt = config.integration_step_s;
+    for (const PlanStep& step : plan) {
+      ASSERT_GT(step.duration_s, 0.0);
+      const typename V::Control u(step.control[0], step.control[1]);
+      const auto n = std::lround(step.duration_s / dt);
+      for (long i = 0; i < n; ++i) {
+        q = vehicle.step(q, u, dt);
+        ASSERT_TRUE(planner.checker().is_free(q[0], q[1], q[2]));
+      }
+    }
+    EXPECT_TRUE(goal.contains(q[0], q[1])) << "ended at (" << q[0] << ", " << q[1] << ")";
+  }
+};
+
+TEST_P(EndToEndSolveTest, ReachesTheGoalAroundAWallWithACollisionFreePlan) {
+  switch (GetParam().vehicle) {
+    case VehicleKind::kDdVelocity:
+      solve_and_replay(DdVelocity::create({}).value());
+      break;
+    case VehicleKind::kDdAcceleration:
+      solve_and_replay(DdAcceleration::create({}).value());
+      break;
+    case VehicleKind::kCar:
+      solve_and_replay(Car::create({}).value());
+      break;
+  }
+}
+
+std::vector<SolveCase> all_cases() {
+  std::vector<SolveCase> cases;
+  for (auto v : {VehicleKind::kDdVelocity, VehicleKind::kDdAcceleration, VehicleKind::kCar}) {
+    for (auto s : {Selection::kGrip, Selection::kRrt, Selection::kRrtBias}) cases.push_back({v, s});
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllVehiclesAndPlanners, EndToEndSolveTest,
+                         ::testing::ValuesIn(all_cases()), [](const auto& param_info) {
+                           std::string name =
+                               std::string(vehicle_name(param_info.param.vehicle)) + "_" +
+                               std::string(selection_name(param_info.param.selection));
+                           for (char& c : name) {
+                             if (c == '-') c = '_';
+                           }
+                           return name;
+                         });
+
+TEST(RandomSelection, GrowsATreeOfDistinctEdgesWithoutReachingAFarGoalQuickly) {
+  const OccupancyGrid grid = test::room_with_wall();
+  const auto robot = DdAcceleration::create({}).value();
+  PlannerConfig config;
+  config.selection = Selection::kRandom;
+  config.max_edges = 4000;
+  config.max_trajectories = 2000;
+  auto planner = Planner<DdAcceleration>::create(robot, grid, config).value();
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), GoalRegion{9.5, 2.0, 1.0}));
+  StopAfterEdges stop{&planner.stats(), 500};
+  (void)planner.solve(stop);
+  EXPECT_EQ(planner.stats().edges_added, 500U);
+  EXPECT_GT(planner.tree().edge_count(), 500U);  // splits add head records
+}
+
+TEST(PoolExhaustion, StopsGrowingSaysSoAndStillReturnsItsBestAnswer) {
+  const OccupancyGrid grid = test::room_with_wall();
+  const auto robot = Car::create({}).value();
+  PlannerConfig config;
+  config.max_edges = 41;
+  config.max_trajectories = 20;
+  auto planner = Planner<Car>::create(robot, grid, config).value();
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), GoalRegion{9.5, 2.0, 1.0}));
+  const auto result = planner.solve([] { return false; });
+  EXPECT_EQ(result.reason, StopReason::kPoolExhausted);
+  EXPECT_EQ(result.status, SolveStatus::kApproximateSolution);
+  EXPECT_TRUE(planner.stats().pool_exhausted);
+  EXPECT_LE(planner.tree().edge_count(), 41U);
+  const TreeState best = planner.best_state();
+  ASSERT_NE(best.edge, kNoHandle);
+  const auto& q = planner.tree().edge_state(best.edge, best.index);
+  EXPECT_LT(planner.rho_field().distance_m(q[0], q[1]),
+            planner.rho_field().distance_m(2.0, 2.0));  // it made progress towards the goal
+  BoundedVector<PlanStep> plan(64);
+  EXPECT_TRUE(planner.extract_plan(best, plan));
+  EXPECT_GT(plan.size(), 0U);
+}
+
+TEST(Determinism, TheSameSeedReproducesTheRunAndAnotherSeedDoesNot) {
+  const OccupancyGrid grid = test::room_with_wall();
+  const auto robot = DdAcceleration::create({}).value();
+  const auto run = [&](std::uint64_t seed) {
+    PlannerConfig config;
+    config.seed = seed;
+    auto planner = Planner<DdAcceleration>::create(robot, grid, config).value();
+    EXPECT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), GoalRegion{9.5, 2.0, 1.0}));
+    (void)planner.solve([] { return false; });
+    return std::make_pair(planner.stats().edges_added, planner.stats().collision_checks);
+  };
+  EXPECT_EQ(run(3), run(3));
+  EXPECT_NE(run(3), run(4));
+}
+
+TEST(BadInput, InvalidConfigurationsAreRefusedWithTheParameterNamed) {
+  const OccupancyGrid grid = test::walled_room(5.0);
+  const auto robot = DdVelocity::create({}).value();
+  const auto refused = [&](PlannerConfig c, const char* name) {
+    auto p = Planner<DdVelocity>::create(robot, grid, c);
+    ASSERT_FALSE(p);
+    EXPECT_NE(p.error().message.find(name), std::string::npos) << p.error().message;
+  };
+  PlannerConfig c;
+  c.max_edges = 0;
+  refused(c, "max_edges");
+  c = PlannerConfig{};
+  c.max_trajectories = 0;
+  refused(c, "max_trajectories");
+  c = PlannerConfig{};
+  c.score_base_a = 1.0;
+  refused(c, "score_base_a");
+  c = PlannerConfig{};
+  c.integration_step_s = -0.01;
+  refused(c, "integration_step_s");
+  c = PlannerConfig{};
+  c.min_plan_duration_s = 2.0;
+  refused(c, "min_plan_duration_s");
+  c = PlannerConfig{};
+  c.safety_horizon_s = std::nan("");
+  refused(c, "safety_horizon_s");
+}
+
+TEST(BadInput, StartInAnObstacleGoalOutsideTheGridAndNanStatesAreRefused) {
+  OccupancyGrid grid = test::walled_room(6.0);
+  grid.fill_rect(2.0, 2.0, 3.0, 3.0, Cell::kObstacle);
+  const auto robot = Car::create({}).value();
+  auto planner = Planner<Car>::create(robot, grid, PlannerConfig{}).value();
+  const GoalRegion goal{4.5, 4.5, 0.5};
+
+  auto in_obstacle = planner.set_problem(robot.rest_state(2.5, 2.5, 0), goal);
+  ASSERT_FALSE(in_obstacle);
+  EXPECT_NE(in_obstacle.error().message.find("obstacle"), std::string::npos);
+
+  auto outside = planner.set_problem(robot.rest_state(1, 1, 0), GoalRegion{40, 4, 0.5});
+  ASSERT_FALSE(outside);
+  EXPECT_NE(outside.error().message.find("outside the grid"), std::string::npos);
+
+  auto nan_start = planner.set_problem(robot.rest_state(1, std::nan(""), 0), goal);
+  ASSERT_FALSE(nan_start);
+  EXPECT_NE(nan_start.error().message.find("not finite"), std::string::npos);
+
+  auto bad_radius = planner.set_problem(robot.rest_state(1, 1, 0), GoalRegion{4.5, 4.5, -1});
+  EXPECT_FALSE(bad_radius);
+
+  auto goal_in_wall = planner.set_problem(robot.rest_state(1, 1, 0), GoalRegion{2.5, 2.5, 0.3});
+  ASSERT_FALSE(goal_in_wall);
+  EXPECT_NE(goal_in_wall.error().message.find("no free cell"), std::string::npos);
+
+  // Refused problems leave no problem set: solve does nothing.
+  const auto r = planner.solve([] { return false; });
+  EXPECT_EQ(r.status, SolveStatus::kNoSolution);
+  EXPECT_EQ(planner.stats().iterations, 0U);
+}
+
+}  // namespace
+}  // namespace grip

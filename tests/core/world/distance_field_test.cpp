@@ -1,0 +1,389 @@
+#include "grip/world/distance_field.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "grip/common/random.hpp"
+
+namespace grip {
+namespace {
+
+constexpr std::uint32_t kInf = DistanceField::kUnreachable;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+OccupancyGrid make_grid(int w, int h, double res, Cell fill = Cell::kFree) {
+  auto grid = OccupancyGrid::create(w, h, res, 0.0, 0.0, fill);
+  EXPECT_TRUE(grid.ok());
+  return std::move(grid).value();
+}
+
+DistanceField make_field(const OccupancyGrid& grid) {
+  auto field = DistanceField::create(grid.width(), grid.height(), grid.resolution());
+  EXPECT_TRUE(field.ok());
+  return std::move(field).value();
+}
+
+// Reference: Bellman-Ford style relaxation to a fixed point, same costs, same corner rule.
+std::vector<std::uint32_t> reference_costs(const OccupancyGrid& grid,
+                                           const std::vector<bool>& traversable,
+                                           const std::vector<std::uint32_t>& targets) {
+  const int w = grid.width();
+  const int h = grid.height();
+  std::vector<std::uint32_t> cost(grid.cell_count(), kInf);
+  for (const std::uint32_t t : targets) {
+    cost[t] = 0;
+  }
+  const auto pass = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && traversable[grid.index(x, y)];
+  };
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const std::uint32_t from = cost[grid.index(x, y)];
+        if (from == kInf) {
+          continue;
+        }
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            if ((dx == 0 && dy == 0) || !pass(x + dx, y + dy)) {
+              continue;
+            }
+            const bool diagonal = dx != 0 && dy != 0;
+            if (diagonal && !(pass(x + dx, y) && pass(x, y + dy))) {
+              continue;
+            }
+            const std::uint32_t c = from + (diagonal ? 99u : 70u);
+            std::uint32_t& to = cost[grid.index(x + dx, y + dy)];
+            if (c < to) {
+              to = c;
+              changed = true;
+            }
+          }
+        }
+      }
+    }
+  }
+  return cost;
+}
+
+std::vector<bool> free_cells(const OccupancyGrid& grid) {
+  std::vector<bool> out(grid.cell_count());
+  for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+    out[i] = grid.at(i) == Cell::kFree;
+  }
+  return out;
+}
+
+OccupancyGrid random_grid(Random& random, int w, int h, double density) {
+  OccupancyGrid grid = make_grid(w, h, 0.1);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (random.uniform01() < density) {
+        grid.set(x, y, random.below(2) == 0 ? Cell::kObstacle : Cell::kUnknown);
+      }
+    }
+  }
+  return grid;
+}
+
+TEST(DistanceFieldTest, CreateRejectsBadSizesNamingThem) {
+  const auto bad_width = DistanceField::create(0, 10, 0.1);
+  ASSERT_FALSE(bad_width.ok());
+  EXPECT_NE(bad_width.error().message.find("width_cells"), std::string::npos);
+  const auto bad_resolution = DistanceField::create(10, 10, -1.0);
+  ASSERT_FALSE(bad_resolution.ok());
+  EXPECT_NE(bad_resolution.error().message.find("resolution_m"), std::string::npos);
+  EXPECT_NE(bad_resolution.error().message.find("-1"), std::string::npos);
+}
+
+TEST(DistanceFieldTest, MatchesABellmanFordReferenceOnRandomGrids) {
+  Random random(5);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int w = 1 + static_cast<int>(random.below(25));
+    const int h = 1 + static_cast<int>(random.below(25));
+    const OccupancyGrid grid = random_grid(random, w, h, random.uniform(0.0, 0.4));
+    std::vector<std::uint32_t> targets;
+    const std::uint32_t count = 1 + random.below(4);
+    for (std::uint32_t k = 0; k < count; ++k) {
+      targets.push_back(random.below(grid.cell_count()));  // may be non-free: still a seed
+    }
+    DistanceField field = make_field(grid);
+    const std::uint32_t reached = field.compute(grid, targets);
+    const std::vector<std::uint32_t> expected = reference_costs(grid, free_cells(grid), targets);
+    std::uint32_t expected_reached = 0;
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      ASSERT_EQ(field.cost_at(i), expected[i]) << "trial " << trial << " cell " << i;
+      expected_reached += expected[i] != kInf ? 1u : 0u;
+      if (expected[i] == kInf) {
+        EXPECT_EQ(field.at(i), kInfinity);
+        EXPECT_FALSE(field.reachable(i));
+      } else {
+        EXPECT_DOUBLE_EQ(field.at(i), expected[i] * 0.1 / 70.0);
+        EXPECT_TRUE(field.reachable(i));
+      }
+    }
+    EXPECT_EQ(reached, expected_reached);
+  }
+}
+
+TEST(DistanceFieldTest, MatchesTheReferenceWithInflation) {
+  Random random(8);
+  for (int trial = 0; trial < 30; ++trial) {
+    const OccupancyGrid grid = random_grid(random, 30, 24, random.uniform(0.0, 0.08));
+    const double inflation = random.uniform(0.0, 0.35);
+    auto clearance = ClearanceMap::create_for(grid);
+    ASSERT_TRUE(clearance.ok());
+    std::vector<bool> traversable(grid.cell_count());
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      traversable[i] = grid.at(i) == Cell::kFree && clearance->clearance_m(i) >= inflation;
+    }
+    const std::vector<std::uint32_t> targets = {random.below(grid.cell_count())};
+    DistanceField field = make_field(grid);
+    field.compute(grid, targets, inflation);
+    const std::vector<std::uint32_t> expected = reference_costs(grid, traversable, targets);
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      ASSERT_EQ(field.cost_at(i), expected[i]) << "trial " << trial << " cell " << i;
+      ASSERT_EQ(field.traversable(i), traversable[i]) << "trial " << trial << " cell " << i;
+    }
+  }
+}
+
+TEST(DistanceFieldTest, StraightAndDiagonalRunsCostSeventyAndNinetyNinePerCell) {
+  const OccupancyGrid grid = make_grid(20, 20, 0.1);
+  DistanceField field = make_field(grid);
+  const std::vector<std::uint32_t> target = {grid.index(5, 5)};
+  EXPECT_EQ(field.compute(grid, target), 400u);
+  EXPECT_EQ(field.cost_at(grid.index(5, 5)), 0u);
+  EXPECT_EQ(field.cost_at(grid.index(12, 5)), 7u * 70u);
+  EXPECT_EQ(field.cost_at(grid.index(5, 0)), 5u * 70u);
+  EXPECT_EQ(field.cost_at(grid.index(8, 8)), 3u * 99u);
+  EXPECT_EQ(field.cost_at(grid.index(9, 7)), 2u * 99u + 2u * 70u);
+  EXPECT_NEAR(field.at(grid.index(12, 5)), 0.7, 1e-12);
+  EXPECT_NEAR(field.distance_m(0.85, 0.85), 0.3 * 99.0 / 70.0, 1e-12);
+}
+
+TEST(DistanceFieldTest, DiagonalStepsDoNotCutCorners) {
+  OccupancyGrid grid = make_grid(2, 2, 1.0);
+  grid.set(1, 0, Cell::kObstacle);
+  DistanceField field = make_field(grid);
+  const std::vector<std::uint32_t> target = {grid.index(0, 0)};
+  field.compute(grid, target);
+  EXPECT_EQ(field.cost_at(grid.index(1, 1)), 140u);  // around through (0, 1), not 99
+  grid.set(0, 1, Cell::kObstacle);
+  field.compute(grid, target);
+  EXPECT_FALSE(field.reachable(grid.index(1, 1)));  // both sides blocked: no squeezing through
+}
+
+TEST(DistanceFieldTest, UnreachableObstacleAndOutsideCellsAreInfinite) {
+  OccupancyGrid grid = make_grid(20, 10, 0.1);
+  grid.fill_rect(1.0, 0.0, 1.09, 1.0, Cell::kObstacle);  // column 10 walls off the right half
+  DistanceField field = make_field(grid);
+  const std::vector<std::uint32_t> target = {grid.index(2, 5)};
+  EXPECT_EQ(field.compute(grid, target), 100u);
+  EXPECT_TRUE(std::isfinite(field.distance_m(0.55, 0.55)));
+  EXPECT_EQ(field.distance_m(1.55, 0.55), kInfinity);   // walled off
+  EXPECT_EQ(field.distance_m(1.05, 0.55), kInfinity);   // the wall itself
+  EXPECT_EQ(field.distance_m(-0.01, 0.55), kInfinity);  // outside
+  EXPECT_EQ(field.distance_m(0.5, 1.0), kInfinity);
+  EXPECT_EQ(field.distance_m(std::nan(""), 0.5), kInfinity);
+}
+
+TEST(DistanceFieldTest, NoTargetsLeavesEverythingUnreachable) {
+  const OccupancyGrid grid = make_grid(5, 5, 0.1);
+  DistanceField field = make_field(grid);
+  EXPECT_EQ(field.compute(grid, std::span<const std::uint32_t>{}), 0u);
+  for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+    EXPECT_FALSE(field.reachable(i));
+  }
+}
+
+TEST(DistanceFieldTest, SeveralTargetsGiveTheMinimumOfTheirFields) {
+  Random random(17);
+  const OccupancyGrid grid = random_grid(random, 40, 30, 0.15);
+  DistanceField both = make_field(grid);
+  DistanceField first = make_field(grid);
+  DistanceField second = make_field(grid);
+  const std::uint32_t a = grid.index(3, 4);
+  const std::uint32_t b = grid.index(35, 25);
+  const std::vector<std::uint32_t> targets = {a, b};
+  both.compute(grid, targets);
+  first.compute(grid, std::vector<std::uint32_t>{a});
+  second.compute(grid, std::vector<std::uint32_t>{b});
+  int finite = 0;
+  for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+    EXPECT_EQ(both.cost_at(i), std::min(first.cost_at(i), second.cost_at(i)));
+    finite += both.reachable(i) ? 1 : 0;
+  }
+  EXPECT_GT(finite, 600);
+}
+
+TEST(DistanceFieldTest, InflationClosesNarrowPassages) {
+  // A wall across the grid at x = 2.0 with a 0.3 m gap near the bottom and a 1.2 m gap at the
+  // top; the target is left of the wall.
+  OccupancyGrid grid = make_grid(40, 40, 0.1);
+  grid.fill_rect(2.0, 0.0, 2.09, 4.0, Cell::kObstacle);
+  grid.fill_rect(2.0, 0.5, 2.09, 0.79, Cell::kFree);  // rows 5..7: 0.3 m
+  grid.fill_rect(2.0, 2.5, 2.09, 3.69, Cell::kFree);  // rows 25..36: 1.2 m
+  DistanceField field = make_field(grid);
+  const std::vector<std::uint32_t> target = {grid.index(10, 6)};
+  field.compute(grid, target, 0.0);
+  const double through_gap = field.distance_m(3.05, 0.65);
+  EXPECT_NEAR(through_gap, 2.0, 1e-9);  // straight through the narrow gap
+  field.compute(grid, target, 0.25);
+  const double around = field.distance_m(3.05, 0.65);
+  EXPECT_TRUE(std::isfinite(around));  // through the wide gap instead
+  EXPECT_GT(around, 4.0);
+  EXPECT_FALSE(field.traversable(grid.index(20, 6)));
+  EXPECT_TRUE(field.traversable(grid.index(20, 30)));
+  EXPECT_DOUBLE_EQ(field.inflation(), 0.25);
+  // Enough inflation closes the wide gap too.
+  field.compute(grid, target, 0.7);
+  EXPECT_EQ(field.distance_m(3.05, 0.65), kInfinity);
+}
+
+TEST(DistanceFieldTest, ASharedClearanceMapGivesTheSameField) {
+  Random random(23);
+  const OccupancyGrid grid = random_grid(random, 50, 40, 0.05);
+  auto clearance = ClearanceMap::create_for(grid);
+  ASSERT_TRUE(clearance.ok());
+  DistanceField own = make_field(grid);
+  DistanceField shared = make_field(grid);
+  const std::vector<std::uint32_t> target = {grid.index(25, 20)};
+  own.compute(grid, target, 0.2);
+  shared.compute(grid, *clearance, target, 0.2);
+  for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+    ASSERT_EQ(own.cost_at(i), shared.cost_at(i));
+  }
+}
+
+TEST(DistanceFieldTest, AStaleSharedClearanceMapIsABrokenContract) {
+  OccupancyGrid grid = make_grid(10, 10, 0.1);
+  auto clearance = ClearanceMap::create_for(grid);
+  ASSERT_TRUE(clearance.ok());
+  grid.set(1, 1, Cell::kObstacle);
+  DistanceField field = make_field(grid);
+  const std::vector<std::uint32_t> target = {0};
+  EXPECT_DEATH(field.compute(grid, *clearance, target, 0.2), "invariant violated");
+}
+
+TEST(DistanceFieldTest, AGridOfAnotherSizeIsABrokenContract) {
+  const OccupancyGrid grid = make_grid(10, 10, 0.1);
+  auto field = DistanceField::create(10, 12, 0.1);
+  ASSERT_TRUE(field.ok());
+  const std::vector<std::uint32_t> target = {0};
+  EXPECT_DEATH(field->compute(grid, target), "invariant violated");
+}
+
+TEST(DistanceFieldTest, FollowsTheGridOrigin) {
+  auto created = OccupancyGrid::create(10, 10, 0.5, 100.0, -50.0, Cell::kFree);
+  ASSERT_TRUE(created.ok());
+  const OccupancyGrid& grid = *created;
+  DistanceField field = make_field(grid);
+  field.compute(grid, std::vector<std::uint32_t>{grid.index(0, 0)});
+  EXPECT_NEAR(field.distance_m(102.2, -49.9), 4 * 0.5, 1e-12);
+  EXPECT_EQ(field.distance_m(1.0, 1.0), kInfinity);
+}
+
+TEST(DistanceFieldTest, NearestMatchingFindsTheNearestCellOfTheSetLikeBruteForce) {
+  Random random(31);
+  for (int trial = 0; trial < 40; ++trial) {
+    const OccupancyGrid grid = random_grid(random, 35, 28, random.uniform(0.0, 0.3));
+    DistanceField field = make_field(grid);
+    const std::vector<std::uint32_t> goal = {random.below(grid.cell_count())};
+    field.compute(grid, goal);
+    const std::vector<std::uint32_t> field_before([&] {
+      std::vector<std::uint32_t> copy;
+      for (std::uint32_t i = 0; i < grid.cell_count(); ++i) copy.push_back(field.cost_at(i));
+      return copy;
+    }());
+    std::vector<bool> in_set(grid.cell_count(), false);
+    const std::uint32_t set_size = random.below(12);
+    for (std::uint32_t k = 0; k < set_size; ++k) {
+      in_set[random.below(grid.cell_count())] = true;
+    }
+    const std::uint32_t start = random.below(grid.cell_count());
+    // Brute force: the full field from the start, then the minimum over the set.
+    DistanceField from_start = make_field(grid);
+    from_start.compute(grid, std::vector<std::uint32_t>{start});
+    std::uint32_t best = kInf;
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      if (in_set[i]) {
+        best = std::min(best, from_start.cost_at(i));
+      }
+    }
+    double distance = -1.0;
+    int calls = 0;
+    const std::uint32_t found = field.nearest_matching(
+        start,
+        [&](std::uint32_t cell) {
+          ++calls;
+          return static_cast<bool>(in_set[cell]);
+        },
+        &distance);
+    if (best == kInf) {
+      EXPECT_EQ(found, DistanceField::kNoCell) << "trial " << trial;
+      EXPECT_EQ(distance, kInfinity);
+    } else {
+      ASSERT_NE(found, DistanceField::kNoCell) << "trial " << trial;
+      EXPECT_TRUE(in_set[found]);
+      EXPECT_EQ(from_start.cost_at(found), best) << "trial " << trial;
+      EXPECT_DOUBLE_EQ(distance, best * 0.1 / 70.0);
+    }
+    EXPECT_GE(calls, 1);
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      ASSERT_EQ(field.cost_at(i), field_before[i]) << "nearest_matching touched the field";
+    }
+  }
+}
+
+TEST(DistanceFieldTest, NearestMatchingStopsEarlyAndReturnsTheStartWhenItMatches) {
+  const OccupancyGrid grid = make_grid(200, 200, 0.1);
+  DistanceField field = make_field(grid);
+  field.prepare(grid);
+  const std::uint32_t start = grid.index(100, 100);
+  int calls = 0;
+  const auto is_start = [&](std::uint32_t cell) {
+    ++calls;
+    return cell == start;
+  };
+  EXPECT_EQ(field.nearest_matching(start, is_start), start);
+  EXPECT_EQ(calls, 1);
+  // A target two cells away settles only the cells closer than it (a small diamond).
+  calls = 0;
+  const std::uint32_t near = grid.index(102, 100);
+  const auto is_near = [&](std::uint32_t cell) {
+    ++calls;
+    return cell == near;
+  };
+  double distance = 0.0;
+  EXPECT_EQ(field.nearest_matching(start, is_near, &distance), near);
+  EXPECT_NEAR(distance, 0.2, 1e-12);
+  EXPECT_LE(calls, 25);
+  // Repeated queries reuse the scratch buffers correctly (generation stamps).
+  for (int k = 0; k < 50; ++k) {
+    EXPECT_EQ(field.nearest_matching(start, is_near), near);
+  }
+}
+
+TEST(DistanceFieldTest, NearestMatchingUsesThePreparedTraversableSet) {
+  OccupancyGrid grid = make_grid(30, 10, 0.1);
+  grid.fill_rect(1.5, 0.0, 1.59, 1.0, Cell::kObstacle);  // column 15 blocks the way
+  DistanceField field = make_field(grid);
+  field.prepare(grid);
+  const std::uint32_t goal = grid.index(25, 5);
+  const auto is_goal = [&](std::uint32_t cell) { return cell == goal; };
+  EXPECT_EQ(field.nearest_matching(grid.index(2, 5), is_goal), DistanceField::kNoCell);
+  grid.set(15, 5, Cell::kFree);
+  field.prepare(grid);
+  EXPECT_EQ(field.nearest_matching(grid.index(2, 5), is_goal), goal);
+}
+
+}  // namespace
+}  // namespace grip

@@ -1,0 +1,12 @@
+#pragma once
+// The subcommands of `grip`. Each registers its options on the CLI11 app and runs when chosen.
+
+#include <CLI/CLI.hpp>
+
+namespace grip::tools {
+
+void register_scene_command(CLI::App& app);
+void register_plan_command(CLI::App& app);
+void register_bench_command(CLI::App& app);
+
+}  // namespace grip::tools

@@ -1,0 +1,19 @@
+// grip: the command of the GRIP real-time planning runtime.
+
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"grip: GRIP (Greedy, Incremental, Path-directed) kinodynamic replanning runtime"};
+  app.require_subcommand(1);
+  grip::tools::register_scene_command(app);
+  grip::tools::register_plan_command(app);
+  grip::tools::register_bench_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  return 0;
+}
