@@ -158,6 +158,7 @@ nlohmann::json run_time_250_edges(const BenchOptions& o) {
       for (std::uint64_t seed = 1; seed <= o.seeds; ++seed) {
         PlannerConfig config;
         config.seed = seed;
+        config.stop_at_goal = false;  // always a full 250-edge tree
         config = config_for_edge_cap(config, 250);
         with_vehicle(kind, [&](const auto& vehicle) {
           auto r = run_standalone(vehicle, *scene, config, 250, 0.0, [](const auto&) {});
@@ -199,6 +200,7 @@ nlohmann::json run_safety_overhead(const BenchOptions& o) {
           PlannerConfig config;
           config.seed = seed;
           config.safety = variant == 0 ? SafetyCheck::kAtHorizon : SafetyCheck::kAllLeaves;
+          config.stop_at_goal = false;  // the same budget for both: tree size is the measure
           config = config_for_edge_cap(config, o.max_edges);
           with_vehicle(kind, [&](const auto& vehicle) {
             auto r =

@@ -19,6 +19,9 @@ struct PlanOptions {
   double time_limit_s = 0.0;
   bool all_leaves_safe = false;
   double score_base_a = PlannerConfig{}.score_base_a;
+  double min_plan_duration_s = PlannerConfig{}.min_plan_duration_s;
+  double max_plan_duration_s = PlannerConfig{}.max_plan_duration_s;
+  double rho_clearance_m = PlannerConfig{}.rho_clearance_m;
   std::string image;
 };
 
@@ -41,6 +44,9 @@ int run_plan(const PlanOptions& o) {
   config.selection = *selection;
   config.seed = o.seed;
   config.score_base_a = o.score_base_a;
+  config.min_plan_duration_s = o.min_plan_duration_s;
+  config.max_plan_duration_s = o.max_plan_duration_s;
+  config.rho_clearance_m = o.rho_clearance_m;
   config.safety = o.all_leaves_safe ? SafetyCheck::kAllLeaves : SafetyCheck::kAtHorizon;
   config = config_for_edge_cap(config, o.max_edges);
   return with_vehicle(*kind, [&](const auto& vehicle) {
@@ -85,6 +91,13 @@ void register_plan_command(CLI::App& app) {
   cmd->add_option("--time-limit", o->time_limit_s, "Stop after this many seconds (0: none)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--score-base-a", o->score_base_a, "GRIP's a > 1 in s(e) = a^p(e) rho(e, F)")
+      ->capture_default_str();
+  cmd->add_option("--min-plan-duration", o->min_plan_duration_s, "Shortest random plan [s]")
+      ->capture_default_str();
+  cmd->add_option("--max-plan-duration", o->max_plan_duration_s, "Longest random plan [s]")
+      ->capture_default_str();
+  cmd->add_option("--rho-clearance", o->rho_clearance_m,
+                 "rho_A* is computed for a disk of this radius [m]")
       ->capture_default_str();
   cmd->add_flag("--all-leaves-safe", o->all_leaves_safe,
                 "Check every new leaf's contingency instead of only states at time T");

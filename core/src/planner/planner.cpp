@@ -133,7 +133,7 @@ Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
                             " contains no free cell");
   }
   goal_ = goal;
-  rho_field_.compute(*grid_, goal_cells_.span());
+  rho_field_.compute(*grid_, checker_.clearance(), goal_cells_.span(), config_.rho_clearance_m);
 
   free_cells_.clear();
   if (free_cells_.capacity() > 0) {
@@ -168,7 +168,7 @@ SolveResult Planner<V>::solve(FunctionRef<bool()> should_stop) noexcept {
   SolveResult result;
   if (!problem_set_) return result;
   for (;;) {
-    if (solved()) {
+    if (solved() && config_.stop_at_goal) {
       result.reason = StopReason::kGoalReached;
       break;
     }
@@ -295,7 +295,7 @@ EdgeHandle Planner<V>::expand_from(TreeState from) noexcept {
     best_rho_ = p.rho_m;
     best_ = TreeState{added, p.rho_index};
   }
-  if (p.reached_goal) solution_ = TreeState{added, p.last};
+  if (p.reached_goal && !solved()) solution_ = TreeState{added, p.last};
   return added;
 }
 

@@ -80,6 +80,10 @@ Status PlannerConfig::validate() const {
                             std::to_string(score_base_a) + ")");
   }
   if (auto s = positive("safety_horizon_s", safety_horizon_s); !s) return s;
+  if (!std::isfinite(rho_clearance_m) || rho_clearance_m < 0.0) {
+    return invalid_argument("planner.rho_clearance_m must be finite and >= 0 (got " +
+                            std::to_string(rho_clearance_m) + ")");
+  }
   if (!std::isfinite(rrt_goal_bias) || rrt_goal_bias < 0.0 || rrt_goal_bias > 1.0) {
     return invalid_argument("planner.rrt_goal_bias must be in [0, 1] (got " +
                             std::to_string(rrt_goal_bias) + ")");

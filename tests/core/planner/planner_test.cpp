@@ -34,6 +34,7 @@ class GripBookkeepingTest : public ::testing::Test {
     config.max_edges = 2000;
     config.max_trajectories = 1000;
     config.seed = 11;
+    config.stop_at_goal = false;  // keep iterating once the goal is reached
     planner.emplace(Planner<DdAcceleration>::create(robot, grid, config).value());
     ASSERT_TRUE(planner->set_problem(robot.rest_state(2, 2, 0), GoalRegion{10, 10, 0.8}));
   }
@@ -257,7 +258,7 @@ TEST(BadInput, InvalidConfigurationsAreRefusedWithTheParameterNamed) {
   c.integration_step_s = -0.01;
   refused(c, "integration_step_s");
   c = PlannerConfig{};
-  c.min_plan_duration_s = 2.0;
+  c.min_plan_duration_s = c.max_plan_duration_s + 1.0;
   refused(c, "min_plan_duration_s");
   c = PlannerConfig{};
   c.safety_horizon_s = std::nan("");

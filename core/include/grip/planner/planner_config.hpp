@@ -44,18 +44,27 @@ struct PlannerConfig {
   std::uint32_t steps_per_record = 2;
 
   // Random plans: one control held for a duration uniform in [min, max] (section 2.2 step 3).
-  double min_plan_duration_s = 0.3;
-  double max_plan_duration_s = 1.5;
+  double min_plan_duration_s = 1.0;
+  double max_plan_duration_s = 4.0;
   // New edges shorter than this (t_free below the threshold) are discarded.
   double min_edge_duration_s = 0.1;
 
   // GRIP's trade-off a > 1 between greed (rho) and the priority counters (Eq. 3).
-  double score_base_a = 1.0002;
+  double score_base_a = 1.00001;
   // T: the time from the root at which contingencies are checked; in replanning, the
   // duration of the next cycle. Rounded to a whole number of integration steps.
   double safety_horizon_s = 1.0;
+  // rho_A* is computed in the configuration space of a disk of this radius: cells closer than
+  // this to an obstacle or unknown space are not traversed by the wavefront, so the heuristic
+  // leads through passages rather than along walls and around corners a vehicle cannot take.
+  // States in such cells have rho = +infinity and are selected last. 0 = the plain grid.
+  double rho_clearance_m = 0.3;
   // RRT-EXTEND-BIAS: the fraction of samples that are the goal.
   double rrt_goal_bias = 0.2;
+
+  // Whether solve() returns as soon as a state in the goal region is reached. Replanning and
+  // timing runs keep growing the tree.
+  bool stop_at_goal = true;
 
   std::uint64_t seed = 1;
 

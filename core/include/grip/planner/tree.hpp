@@ -47,7 +47,8 @@ class Tree {
         trajectories_(max_trajectories),
         states_per_trajectory_(states_per_trajectory),
         steps_per_record_(steps_per_record),
-        states_(new State[static_cast<std::size_t>(max_trajectories) * states_per_trajectory]) {}
+        // Value-initialised: every page is touched here, at start-up, not in the planning loop.
+        states_(new State[static_cast<std::size_t>(max_trajectories) * states_per_trajectory]()) {}
 
   // Clears the tree and makes a root edge holding the single state q (zero duration).
   EdgeHandle reset(const State& q) noexcept {

@@ -30,6 +30,7 @@ class PlanningLoopAllocationTest : public ::testing::Test {
     config.safety = safety;
     config.max_edges = 8000;
     config.max_trajectories = 4000;
+    config.stop_at_goal = false;  // the loop keeps running past the goal, as when replanning
     auto planner = Planner<V>::create(vehicle, scene.grid, config).value();
     EXPECT_TRUE(planner.set_problem(
         vehicle.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad),
