@@ -97,7 +97,7 @@ void register_plan_command(CLI::App& app) {
   cmd->add_option("--max-plan-duration", o->max_plan_duration_s, "Longest random plan [s]")
       ->capture_default_str();
   cmd->add_option("--rho-clearance", o->rho_clearance_m,
-                 "rho_A* is computed for a disk of this radius [m]")
+                  "rho_A* is computed for a disk of this radius [m]")
       ->capture_default_str();
   cmd->add_flag("--all-leaves-safe", o->all_leaves_safe,
                 "Check every new leaf's contingency instead of only states at time T");

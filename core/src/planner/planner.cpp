@@ -58,12 +58,20 @@ Result<Planner<V>> Planner<V>::create(const V& vehicle, const OccupancyGrid& gri
   if (!checker) return checker.error();
   auto field = DistanceField::create(grid.width(), grid.height(), grid.resolution());
   if (!field) return field.error();
-  return Planner(vehicle, grid, config, std::move(checker).value(), std::move(field).value());
+  std::optional<NearestSourceField> tree_cells;
+  if (config.selection == Selection::kRrt || config.selection == Selection::kRrtBias) {
+    auto voronoi = NearestSourceField::create(grid.width(), grid.height());
+    if (!voronoi) return voronoi.error();
+    tree_cells.emplace(std::move(voronoi).value());
+  }
+  return Planner(vehicle, grid, config, std::move(checker).value(), std::move(field).value(),
+                 std::move(tree_cells));
 }
 
 template <VehicleModel V>
 Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerConfig& config,
-                    CollisionChecker checker, DistanceField field)
+                    CollisionChecker checker, DistanceField field,
+                    std::optional<NearestSourceField> tree_cells)
     : vehicle_(vehicle),
       config_(config),
       grid_(&grid),
@@ -73,10 +81,9 @@ Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerCo
             config.steps_per_record),
       heap_(config.max_edges),
       live_edges_(config.selection == Selection::kRandom ? config.max_edges : 0),
-      free_cells_(config.selection == Selection::kRrt || config.selection == Selection::kRrtBias
-                      ? grid.cell_count()
-                      : 0),
+      free_cells_(tree_cells ? grid.cell_count() : 0),
       cell_state_(free_cells_.capacity()),
+      tree_cells_(std::move(tree_cells)),
       goal_cells_(grid.cell_count()),
       rng_(config.seed),
       log_a_(std::log(config.score_base_a)),
@@ -136,10 +143,12 @@ Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
   rho_field_.compute(*grid_, checker_.clearance(), goal_cells_.span(), config_.rho_clearance_m);
 
   free_cells_.clear();
-  if (free_cells_.capacity() > 0) {
+  if (tree_cells_) {
+    // RRT samples the cells rho_A* reaches from the goal, so every sample has a nearest state.
     for (std::uint32_t c = 0; c < grid_->cell_count(); ++c) {
-      if (grid_->cells()[c] == Cell::kFree) GRIP_ASSERT(free_cells_.push_back(c));
+      if (rho_field_.reachable(c)) GRIP_ASSERT(free_cells_.push_back(c));
     }
+    tree_cells_->reset(rho_field_);
     cell_state_.clear();
     for (std::uint32_t c = 0; c < cell_state_.capacity(); ++c) {
       GRIP_ASSERT(cell_state_.push_back(TreeState{}));
@@ -158,6 +167,7 @@ Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
   best_ = TreeState{root, 0};
   best_rho_ = r.rho_m;
   register_edge(root);
+  if (config_.selection == Selection::kGrip) push_scored(root);
   if (goal_.contains(state_x(start), state_y(start))) solution_ = best_;
   problem_set_ = true;
   return Ok{};
@@ -197,13 +207,8 @@ bool Planner<V>::iterate() noexcept {
   // GRIP (section 2.2): pop the minimum score, propagate from a random state along it, and
   // apply Eq. 2 to the parts of the selected edge whether or not the propagation succeeded.
   const EdgeHandle selected = heap_.pop();
-  Edge& edge = tree_.edge(selected);
-  const std::uint16_t k =
-      edge.first == edge.last
-          ? edge.last
-          : static_cast<std::uint16_t>(edge.first + 1 + rng_.below(edge.last - edge.first));
-  const double new_priority = std::fma(2.0, edge.priority, 1.0);
-  const EdgeHandle added = expand_from(TreeState{selected, k});
+  const double new_priority = std::fma(2.0, tree_.edge(selected).priority, 1.0);
+  const EdgeHandle added = expand_from(random_state_along(selected));
   tree_.edge(selected).priority = new_priority;
   if (added != kNoHandle) {
     // expand_from split `selected` at k when k was inside it: the head took its place.
@@ -226,30 +231,34 @@ bool Planner<V>::iterate() noexcept {
 template <VehicleModel V>
 TreeState Planner<V>::select() noexcept {
   if (config_.selection == Selection::kRandom) {
-    const EdgeHandle e = live_edges_[rng_.below(static_cast<std::uint32_t>(live_edges_.size()))];
-    const Edge& edge = tree_.edge(e);
-    const std::uint16_t k =
-        edge.first == edge.last
-            ? edge.last
-            : static_cast<std::uint16_t>(edge.first + 1 + rng_.below(edge.last - edge.first));
-    return TreeState{e, k};
+    return random_state_along(
+        live_edges_[rng_.below(static_cast<std::uint32_t>(live_edges_.size()))]);
   }
   return select_rrt();
 }
 
 template <VehicleModel V>
+TreeState Planner<V>::random_state_along(EdgeHandle e) noexcept {
+  // A recorded state of e other than its first, which belongs to the parent (the root edge
+  // holds a single state).
+  const Edge& edge = tree_.edge(e);
+  if (edge.first == edge.last) return TreeState{e, edge.last};
+  return TreeState{e,
+                   static_cast<std::uint16_t>(edge.first + 1 + rng_.below(edge.last - edge.first))};
+}
+
+template <VehicleModel V>
 TreeState Planner<V>::select_rrt() noexcept {
-  // RRT-EXTEND: a random free point, and the tree state nearest to it under rho_A*, found by
-  // a wavefront from the point that stops at the first cell holding a tree state.
+  // RRT-EXTEND: a random free point, and the tree state nearest to it under rho_A*: the
+  // geodesic Voronoi field of the tree's cells answers in O(1).
   std::uint32_t sample = 0;
   if (config_.selection == Selection::kRrtBias && rng_.uniform01() < config_.rrt_goal_bias) {
     sample = goal_cells_[rng_.below(static_cast<std::uint32_t>(goal_cells_.size()))];
   } else {
     sample = free_cells_[rng_.below(static_cast<std::uint32_t>(free_cells_.size()))];
   }
-  const std::uint32_t cell = rho_field_.nearest_matching(
-      sample, [this](std::uint32_t c) { return cell_state_[c].edge != kNoHandle; });
-  if (cell == kNoHandle) return TreeState{tree_.root(), 0};
+  const std::uint32_t cell = tree_cells_->nearest_source(sample);
+  if (cell == NearestSourceField::kNoCell) return TreeState{tree_.root(), 0};
   return resolve(cell_state_[cell]);
 }
 
@@ -393,8 +402,7 @@ template <VehicleModel V>
 void Planner<V>::register_edge(EdgeHandle e) noexcept {
   switch (config_.selection) {
     case Selection::kGrip:
-      if (e == tree_.root()) push_scored(e);
-      break;
+      break;  // GRIP's heap is kept by iterate()
     case Selection::kRandom:
       GRIP_ASSERT(live_edges_.push_back(e));  // sized to the edge pool
       break;
@@ -406,8 +414,10 @@ void Planner<V>::register_edge(EdgeHandle e) noexcept {
         int cx = 0;
         int cy = 0;
         if (!grid_->to_cell(state_x(q), state_y(q), cx, cy)) continue;
-        TreeState& slot = cell_state_[grid_->index(cx, cy)];
-        if (slot.edge == kNoHandle) slot = TreeState{e, static_cast<std::uint16_t>(k)};
+        const std::uint32_t cell = grid_->index(cx, cy);
+        if (cell_state_[cell].edge != kNoHandle) continue;
+        cell_state_[cell] = TreeState{e, static_cast<std::uint16_t>(k)};
+        tree_cells_->add_source(cell);
       }
       break;
     }

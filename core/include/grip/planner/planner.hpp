@@ -27,6 +27,7 @@
 #include "grip/vehicles/dd_velocity.hpp"
 #include "grip/world/collision_checker.hpp"
 #include "grip/world/distance_field.hpp"
+#include "grip/world/nearest_source_field.hpp"
 #include "grip/world/occupancy_grid.hpp"
 
 namespace grip {
@@ -132,11 +133,13 @@ class Planner {
   };
 
   Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerConfig& config,
-          CollisionChecker checker, DistanceField field);
+          CollisionChecker checker, DistanceField field,
+          std::optional<NearestSourceField> tree_cells);
 
   bool iterate() noexcept;
   TreeState select() noexcept;
   TreeState select_rrt() noexcept;
+  TreeState random_state_along(EdgeHandle e) noexcept;
   TreeState resolve(TreeState s) const noexcept;
   EdgeHandle expand_from(TreeState from) noexcept;
   Propagated propagate(TrajectoryHandle t, const State& from, std::uint32_t from_step,
@@ -145,6 +148,7 @@ class Planner {
   bool is_free(const State& q) noexcept;
   double edge_rho(EdgeHandle e) const noexcept;
   double score(const Edge& e) const noexcept;
+  // Makes a new edge selectable by the baseline strategies.
   void register_edge(EdgeHandle e) noexcept;
   void push_scored(EdgeHandle e) noexcept;
   double rho_at(const State& q) const noexcept {
@@ -158,9 +162,10 @@ class Planner {
   DistanceField rho_field_;
   Tree<State> tree_;
   IndexedMinHeap heap_;
-  BoundedVector<EdgeHandle> live_edges_;     // random selection
-  BoundedVector<std::uint32_t> free_cells_;  // RRT samples
-  BoundedVector<TreeState> cell_state_;      // RRT: a tree state in each grid cell
+  BoundedVector<EdgeHandle> live_edges_;          // random selection
+  BoundedVector<std::uint32_t> free_cells_;       // RRT samples: cells rho_A* can reach
+  BoundedVector<TreeState> cell_state_;           // RRT: a tree state in each grid cell
+  std::optional<NearestSourceField> tree_cells_;  // RRT: nearest tree cell under rho_A*
   BoundedVector<std::uint32_t> goal_cells_;
   Random rng_;
   GoalRegion goal_;
