@@ -1,30 +1,26 @@
 #include "grip/planner/planner_config.hpp"
 
+#include <array>
 #include <cmath>
 #include <string>
 
+#include "grip/common/enum_names.hpp"
+
 namespace grip {
 
-std::string_view selection_name(Selection s) noexcept {
-  switch (s) {
-    case Selection::kGrip:
-      return "grip";
-    case Selection::kRandom:
-      return "random";
-    case Selection::kRrt:
-      return "rrt";
-    case Selection::kRrtBias:
-      return "rrt-bias";
-  }
-  return "unknown";
-}
+namespace {
+constexpr std::array<NamedValue<Selection>, 4> kSelectionNames{{
+    {Selection::kGrip, "grip"},
+    {Selection::kRandom, "random"},
+    {Selection::kRrt, "rrt"},
+    {Selection::kRrtBias, "rrt-bias"},
+}};
+}  // namespace
+
+std::string_view selection_name(Selection s) noexcept { return name_in(kSelectionNames, s); }
 
 Result<Selection> selection_from_name(std::string_view name) {
-  for (Selection s : {Selection::kGrip, Selection::kRandom, Selection::kRrt, Selection::kRrtBias}) {
-    if (selection_name(s) == name) return s;
-  }
-  return invalid_argument("unknown planner '" + std::string(name) +
-                          "' (expected one of: grip, random, rrt, rrt-bias)");
+  return value_named(kSelectionNames, name, "planner");
 }
 
 std::uint32_t PlannerConfig::states_per_trajectory() const noexcept {

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <utility>
 
+#include "grip/common/enum_names.hpp"
+
 namespace grip {
 
 namespace {
@@ -245,17 +247,15 @@ Scene make_rooms() {
 
 std::span<const SceneId> all_scenes() noexcept { return kAllScenes; }
 
-std::string_view scene_name(SceneId id) noexcept {
-  switch (id) {
-    case SceneId::kMeandros:
-      return "meandros";
-    case SceneId::kLabyrinth:
-      return "labyrinth";
-    case SceneId::kRooms:
-      return "rooms";
-  }
-  return "unknown";
-}
+namespace {
+constexpr std::array<NamedValue<SceneId>, 3> kSceneNames{{
+    {SceneId::kMeandros, "meandros"},
+    {SceneId::kLabyrinth, "labyrinth"},
+    {SceneId::kRooms, "rooms"},
+}};
+}  // namespace
+
+std::string_view scene_name(SceneId id) noexcept { return name_in(kSceneNames, id); }
 
 namespace {
 
@@ -283,15 +283,9 @@ Result<Scene> make_scene(SceneId id) {
 }
 
 Result<Scene> make_scene(std::string_view name) {
-  std::string valid;
-  for (const SceneId id : kAllScenes) {
-    if (scene_name(id) == name) {
-      return make_scene(id);
-    }
-    valid += valid.empty() ? "" : ", ";
-    valid += scene_name(id);
-  }
-  return invalid_argument("unknown scene \"" + std::string(name) + "\" (valid: " + valid + ")");
+  auto id = value_named(kSceneNames, name, "scene");
+  if (!id) return id.error();
+  return make_scene(*id);
 }
 
 Status validate_start_goal(const OccupancyGrid& grid, double start_x_m, double start_y_m,

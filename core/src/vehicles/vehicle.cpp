@@ -1,28 +1,24 @@
 #include "grip/vehicles/vehicle.hpp"
 
+#include <array>
 #include <string>
+
+#include "grip/common/enum_names.hpp"
 
 namespace grip {
 
-std::string_view vehicle_name(VehicleKind kind) noexcept {
-  switch (kind) {
-    case VehicleKind::kDdVelocity:
-      return "dd-vel";
-    case VehicleKind::kDdAcceleration:
-      return "dd-accel";
-    case VehicleKind::kCar:
-      return "car";
-  }
-  return "unknown";
-}
+namespace {
+constexpr std::array<NamedValue<VehicleKind>, 3> kVehicleNames{{
+    {VehicleKind::kDdVelocity, "dd-vel"},
+    {VehicleKind::kDdAcceleration, "dd-accel"},
+    {VehicleKind::kCar, "car"},
+}};
+}  // namespace
+
+std::string_view vehicle_name(VehicleKind kind) noexcept { return name_in(kVehicleNames, kind); }
 
 Result<VehicleKind> vehicle_kind_from_name(std::string_view name) {
-  for (VehicleKind kind :
-       {VehicleKind::kDdVelocity, VehicleKind::kDdAcceleration, VehicleKind::kCar}) {
-    if (vehicle_name(kind) == name) return kind;
-  }
-  return invalid_argument("unknown robot '" + std::string(name) +
-                          "' (expected one of: dd-vel, dd-accel, car)");
+  return value_named(kVehicleNames, name, "robot");
 }
 
 Status validate_positive(std::string_view name, double value) {
