@@ -23,10 +23,6 @@ constexpr bool kSanitizerBuild = true;
 constexpr bool kSanitizerBuild = false;
 #endif
 
-// Stores through a volatile pointer so that the compiler cannot elide an allocation whose
-// result is otherwise unused (C++14 allows new/delete pairs to be elided).
-void* volatile g_sink = nullptr;
-void escape(void* p) { g_sink = p; }
 
 TEST(AllocCounter, InterposesMallocExceptUnderSanitizers) {
   if constexpr (kSanitizerBuild) {
@@ -42,6 +38,11 @@ TEST(AllocCounter, InterposesMallocExceptUnderSanitizers) {
 // The counting tests exist only where counting is possible: a sanitizer build has nothing to
 // count with (checked above), and the unsanitized CI build runs them.
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+// Stores through a volatile pointer so that the compiler cannot elide an allocation whose
+// result is otherwise unused (C++14 allows new/delete pairs to be elided).
+void* volatile g_sink = nullptr;
+void escape(void* p) { g_sink = p; }
+
 class AllocCounterTest : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -89,7 +89,7 @@ void register_plan_command(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
   cmd->add_option("--max-edges", o->max_edges, "Stop after this many edges")->capture_default_str();
   cmd->add_option("--time-limit", o->time_limit_s, "Stop after this many seconds (0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 86400.0));
   cmd->add_option("--score-base-a", o->score_base_a, "GRIP's a > 1 in s(e) = a^p(e) rho(e, F)")
       ->capture_default_str();
   cmd->add_option("--min-plan-duration", o->min_plan_duration_s, "Shortest random plan [s]")

@@ -30,8 +30,6 @@ std::string_view stop_reason_name(StopReason r) noexcept {
 }
 
 namespace {
-// Scores are compared in log space: a^p overflows for the priorities that occur (Eq. 3).
-constexpr double kRhoFloorM = 1e-3;
 
 std::uint32_t to_steps(double seconds, double step) noexcept {
   return static_cast<std::uint32_t>(std::llround(seconds / step));
@@ -388,8 +386,9 @@ double Planner<V>::edge_rho(EdgeHandle e) const noexcept {
 
 template <VehicleModel V>
 double Planner<V>::score(const Edge& e) const noexcept {
-  // ln s(e) = p(e) ln a + ln rho(e, F) (Eq. 3 in log space). Unreachable edges score +inf.
-  return e.priority * log_a_ + std::log(std::max(e.rho_m, kRhoFloorM));
+  // ln s(e) = p(e) ln a + ln rho(e, F) (Eq. 3 in log space: a^p overflows for the priorities
+  // that occur). Unreachable edges score +inf; rho below the floor compares as equal.
+  return e.priority * log_a_ + std::log(std::max(e.rho_m, config_.rho_floor_m));
 }
 
 template <VehicleModel V>

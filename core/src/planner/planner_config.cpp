@@ -80,6 +80,7 @@ Status PlannerConfig::validate() const {
     return invalid_argument("planner.rho_clearance_m must be finite and >= 0 (got " +
                             std::to_string(rho_clearance_m) + ")");
   }
+  if (auto s = positive("rho_floor_m", rho_floor_m); !s) return s;
   if (!std::isfinite(rrt_goal_bias) || rrt_goal_bias < 0.0 || rrt_goal_bias > 1.0) {
     return invalid_argument("planner.rrt_goal_bias must be in [0, 1] (got " +
                             std::to_string(rrt_goal_bias) + ")");

@@ -94,7 +94,8 @@ TEST_F(GripBookkeepingTest, ScoresAreEq3InLogSpaceAndRhoIsEq1OverTheEdgesStates)
       rho = std::min(rho, planner->rho_field().distance_m(q[0], q[1]));
     }
     EXPECT_DOUBLE_EQ(edge.rho_m, rho);
-    EXPECT_DOUBLE_EQ(planner->log_score(e), edge.priority * log_a + std::log(std::max(rho, 1e-3)));
+    EXPECT_DOUBLE_EQ(planner->log_score(e),
+                     edge.priority * log_a + std::log(std::max(rho, config.rho_floor_m)));
     ++checked;
   });
   EXPECT_GT(checked, 300U);
@@ -263,6 +264,15 @@ TEST(BadInput, InvalidConfigurationsAreRefusedWithTheParameterNamed) {
   c = PlannerConfig{};
   c.safety_horizon_s = std::nan("");
   refused(c, "safety_horizon_s");
+  c = PlannerConfig{};
+  c.rho_floor_m = 0.0;
+  refused(c, "rho_floor_m");
+  c = PlannerConfig{};
+  c.rho_clearance_m = -0.1;
+  refused(c, "rho_clearance_m");
+  c = PlannerConfig{};
+  c.rrt_goal_bias = 1.5;
+  refused(c, "rrt_goal_bias");
 }
 
 TEST(BadInput, StartInAnObstacleGoalOutsideTheGridAndNanStatesAreRefused) {

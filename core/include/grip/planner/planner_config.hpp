@@ -59,6 +59,10 @@ struct PlannerConfig {
   // leads through passages rather than along walls and around corners a vehicle cannot take.
   // States in such cells have rho = +infinity and are selected last. 0 = the plain grid.
   double rho_clearance_m = 0.3;
+  // rho below this compares as equal in the score. In log space a metre near the goal would
+  // otherwise outweigh hundreds of thousands of priority steps, and the search would keep
+  // expanding states that pass the goal region at a speed that cannot turn into it.
+  double rho_floor_m = 4.0;
   // RRT-EXTEND-BIAS: the fraction of samples that are the goal.
   double rrt_goal_bias = 0.2;
 
