@@ -23,7 +23,6 @@ constexpr bool kSanitizerBuild = true;
 constexpr bool kSanitizerBuild = false;
 #endif
 
-
 TEST(AllocCounter, InterposesMallocExceptUnderSanitizers) {
   if constexpr (kSanitizerBuild) {
     EXPECT_FALSE(alloc_counter::interposed())

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "test_worlds.hpp"
+#include "test_support.hpp"
 
 namespace grip {
 namespace {
@@ -132,23 +132,7 @@ class EndToEndSolveTest : public ::testing::TestWithParam<SolveCase> {
     ASSERT_TRUE(planner.set_problem(vehicle.rest_state(2.0, 2.0, 0.0), goal));
     const auto result = planner.solve([] { return false; });
     ASSERT_EQ(result.status, SolveStatus::kExactSolution) << stop_reason_name(result.reason);
-    ASSERT_TRUE(planner.solved());
-
-    BoundedVector<PlanStep> plan(4096);
-    ASSERT_TRUE(planner.extract_plan(planner.best_state(), plan));
-    ASSERT_GT(plan.size(), 0U);
-    auto q = vehicle.rest_state(2.0, 2.0, 0.0);
-    const double dt = config.integration_step_s;
-    for (const PlanStep& step : plan) {
-      ASSERT_GT(step.duration_s, 0.0);
-      const typename V::Control u(step.control[0], step.control[1]);
-      const auto n = std::lround(step.duration_s / dt);
-      for (long i = 0; i < n; ++i) {
-        q = vehicle.step(q, u, dt);
-        ASSERT_TRUE(planner.checker().is_free(q[0], q[1], q[2]));
-      }
-    }
-    EXPECT_TRUE(goal.contains(q[0], q[1])) << "ended at (" << q[0] << ", " << q[1] << ")";
+    test::expect_solution_replays_into_goal(planner, vehicle.rest_state(2.0, 2.0, 0.0), goal);
   }
 };
 
@@ -305,6 +289,33 @@ TEST(BadInput, StartInAnObstacleGoalOutsideTheGridAndNanStatesAreRefused) {
   const auto r = planner.solve([] { return false; });
   EXPECT_EQ(r.status, SolveStatus::kNoSolution);
   EXPECT_EQ(planner.stats().iterations, 0U);
+}
+
+}  // namespace
+}  // namespace grip
+
+namespace grip {
+namespace {
+
+TEST(ExtractPlan, RefusesABufferTooSmallForThePlanAndLeavesItEmpty) {
+  const OccupancyGrid grid = test::room_with_wall();
+  const auto robot = DdAcceleration::create({}).value();
+  auto planner = Planner<DdAcceleration>::create(robot, grid, PlannerConfig{}).value();
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), GoalRegion{9.5, 2.0, 1.0}));
+  (void)planner.solve([] { return false; });
+  ASSERT_TRUE(planner.solved());
+  BoundedVector<PlanStep> roomy(4096);
+  ASSERT_TRUE(planner.extract_plan(planner.best_state(), roomy));
+  ASSERT_GE(roomy.size(), 2U);
+  BoundedVector<PlanStep> tight(roomy.size() - 1);
+  EXPECT_FALSE(planner.extract_plan(planner.best_state(), tight));
+  EXPECT_TRUE(tight.empty());
+  // The pieces add up to the time at which the solution state is reached.
+  double total = 0.0;
+  for (const PlanStep& step : roomy) total += step.duration_s;
+  const TreeState s = planner.best_state();
+  EXPECT_NEAR(total, planner.tree().step_of(s.edge, s.index) * planner.config().integration_step_s,
+              1e-9);
 }
 
 }  // namespace

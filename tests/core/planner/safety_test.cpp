@@ -7,7 +7,7 @@
 
 #include "grip/planner/contingency.hpp"
 #include "grip/planner/planner.hpp"
-#include "test_worlds.hpp"
+#include "test_support.hpp"
 
 namespace grip {
 namespace {
