@@ -72,11 +72,26 @@ CollisionChecker::CollisionChecker(const OccupancyGrid& grid, const Footprint& f
   //   d2 > ((R + 2 hd + tol) / res)^2.
   const double res = grid.resolution();
   const double hd = res * std::sqrt(0.5);
-  const double q = (grown.circumscribed_radius() + 2.0 * hd + 1e-6 * res) / res;
-  const double q2 = q * q * (1.0 + 1e-12);  // round the bound up, never down
   constexpr double kMax = static_cast<double>(std::numeric_limits<std::uint32_t>::max());
-  fast_free_d2_ = q2 < kMax ? static_cast<std::uint32_t>(std::floor(q2))
+  const auto to_d2 = [&](double radius_m) {
+    const double q_cells = (radius_m + 2.0 * hd + 1e-6 * res) / res;
+    const double q_squared = q_cells * q_cells * (1.0 + 1e-12);  // round up, never down
+    return q_squared < kMax ? static_cast<std::uint32_t>(std::floor(q_squared))
                             : std::numeric_limits<std::uint32_t>::max();
+  };
+  fast_free_d2_ = to_d2(grown.circumscribed_radius());
+
+  // Covering disks: n equal segments of the rectangle's length, each inside a disk through its
+  // corners, radius sqrt((length / 2n)^2 + half_width^2). The same bound as above applies to
+  // each disk's centre cell.
+  const double length = grown.front_m + grown.rear_m;
+  disk_count_ =
+      std::clamp(static_cast<int>(std::ceil(length / (2.0 * grown.half_width_m))), 1, kMaxDisks);
+  const double segment = length / disk_count_;
+  for (int i = 0; i < disk_count_; ++i) {
+    disk_offset_cells_[i] = (-grown.rear_m + segment * (i + 0.5)) * inv_resolution_;
+  }
+  disk_free_d2_ = to_d2(std::hypot(0.5 * segment, grown.half_width_m));
 
   words_per_row_ = (width_ + 63) / 64;
   blocked_bits_.assign(static_cast<std::size_t>(words_per_row_) * height_, 0);
@@ -134,8 +149,30 @@ bool CollisionChecker::rectangle_is_free_exact(double x_m, double y_m,
   if (!(std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(theta_rad))) {
     return false;
   }
+  return exact(x_m, y_m, std::cos(theta_rad), std::sin(theta_rad));
+}
+
+bool CollisionChecker::covering_disks_or_exact(double x_m, double y_m,
+                                               double theta_rad) const noexcept {
+  if (!(std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(theta_rad))) {
+    return false;
+  }
   const double c = std::cos(theta_rad);
   const double s = std::sin(theta_rad);
+  const double px = (x_m - origin_x_m_) * inv_resolution_;
+  const double py = (y_m - origin_y_m_) * inv_resolution_;
+  bool all_clear = true;
+  for (int i = 0; i < disk_count_ && all_clear; ++i) {
+    const double u = px + c * disk_offset_cells_[i];
+    const double v = py + s * disk_offset_cells_[i];
+    all_clear = u >= 0.0 && v >= 0.0 && u < width_d_ && v < height_d_ &&
+                clearance_.squared_cells(static_cast<std::uint32_t>(v) * width_ +
+                                         static_cast<std::uint32_t>(u)) > disk_free_d2_;
+  }
+  return all_clear || exact(x_m, y_m, c, s);
+}
+
+bool CollisionChecker::exact(double x_m, double y_m, double c, double s) const noexcept {
   // Everything below is in cell units relative to the grid origin.
   const double px = (x_m - origin_x_m_) * inv_resolution_;
   const double py = (y_m - origin_y_m_) * inv_resolution_;

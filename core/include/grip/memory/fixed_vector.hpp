@@ -13,6 +13,7 @@
 // are constructed, so T need not be default constructible.
 
 #include <cstddef>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <span>
@@ -210,8 +211,11 @@ class BoundedVector : public VectorView<T> {
 
   static Storage allocate(std::size_t capacity) {
     GRIP_ASSERT(capacity <= static_cast<std::size_t>(-1) / sizeof(T));
-    return Storage(
-        static_cast<T*>(::operator new (capacity * sizeof(T), std::align_val_t{alignof(T)})));
+    void* raw = ::operator new (capacity * sizeof(T), std::align_val_t{alignof(T)});
+    // Touch every page now, at start-up, so that the first push_back in a real-time loop does
+    // not take a page fault.
+    std::memset(raw, 0, capacity * sizeof(T));
+    return Storage(static_cast<T*>(raw));
   }
 
   void take(BoundedVector& other) noexcept {

@@ -27,7 +27,8 @@ class IndexedMinHeap {
   // Handles in [0, capacity), but at most `max_size` (<= capacity) entries at once: a large
   // handle space (a grid) with a bounded open set. push() refuses once size() == max_size.
   IndexedMinHeap(std::uint32_t capacity, std::uint32_t max_size)
-      : entries_(new Entry[checked_max_size(capacity, max_size)]),
+      // Value-initialised so that every page is touched here, at start-up, never in a loop.
+      : entries_(new Entry[checked_max_size(capacity, max_size)]()),
         position_(new std::uint32_t[capacity]),
         capacity_(capacity),
         max_size_(max_size) {

@@ -52,7 +52,7 @@ class CollisionChecker {
         return std::isfinite(theta_rad);
       }
     }
-    return rectangle_is_free_exact(x_m, y_m, theta_rad);
+    return covering_disks_or_exact(x_m, y_m, theta_rad);
   }
 
   // The exact path alone (what is_free answers when the fast path cannot decide).
@@ -83,6 +83,15 @@ class CollisionChecker {
   Footprint footprint_;
   double margin_m_;
   void rebuild_bits() noexcept;
+  // Second tier: the grown rectangle is covered by disks along its axis; if the clearance map
+  // clears every disk the answer is "free", else the exact test decides.
+  bool covering_disks_or_exact(double x_m, double y_m, double theta_rad) const noexcept;
+  bool exact(double x_m, double y_m, double c, double s) const noexcept;
+
+  static constexpr int kMaxDisks = 4;
+  int disk_count_ = 1;
+  double disk_offset_cells_[kMaxDisks] = {};  // along the body axis from the reference point
+  std::uint32_t disk_free_d2_ = 0;            // a disk is clear when d2 of its cell exceeds this
 
   ClearanceMap clearance_;
   std::uint32_t fast_free_d2_;  // fast path: free when d2 of the reference cell exceeds this
