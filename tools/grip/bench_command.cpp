@@ -37,6 +37,11 @@ nlohmann::json number_or_null(double v) {
   return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
 }
 
+// A count for the table, "-" where there is none (no run solved).
+std::string count_or_dash(double v) {
+  return std::isnan(v) ? "-" : std::to_string(std::llround(v));
+}
+
 struct EdgeRun {
   std::string scene;
   std::string robot;
@@ -126,9 +131,9 @@ nlohmann::json run_edges_to_goal(const BenchOptions& o) {
       const Summary t = summarize(seconds);
       std::cout << std::left << std::setw(11) << scene << std::setw(10) << robot << std::setw(10)
                 << planner << std::right << std::setw(4) << edges.size() << "/" << std::setw(3)
-                << count << std::setw(11) << std::fixed << std::setprecision(0) << s.median
-                << std::setw(11) << s.mean << std::setw(11) << std::setprecision(3) << t.median
-                << "\n";
+                << count << std::setw(11) << count_or_dash(s.median) << std::setw(11)
+                << count_or_dash(s.mean) << std::setw(11) << std::fixed << std::setprecision(3)
+                << t.median << "\n";
       rows.push_back({{"scene", scene},
                       {"robot", robot},
                       {"planner", planner},

@@ -146,7 +146,7 @@ Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
     for (std::uint32_t c = 0; c < grid_->cell_count(); ++c) {
       if (rho_field_.reachable(c)) GRIP_ASSERT(free_cells_.push_back(c));
     }
-    tree_cells_->reset(rho_field_);
+    tree_cells_->reset();
     cell_state_.clear();
     for (std::uint32_t c = 0; c < cell_state_.capacity(); ++c) {
       GRIP_ASSERT(cell_state_.push_back(TreeState{}));
@@ -416,7 +416,7 @@ void Planner<V>::register_edge(EdgeHandle e) noexcept {
         const std::uint32_t cell = grid_->index(cx, cy);
         if (cell_state_[cell].edge != kNoHandle) continue;
         cell_state_[cell] = TreeState{e, static_cast<std::uint16_t>(k)};
-        tree_cells_->add_source(cell);
+        tree_cells_->add_source(rho_field_, cell);
       }
       break;
     }

@@ -25,9 +25,7 @@ NearestSourceField::NearestSourceField(int width_cells, int height_cells)
                                 static_cast<std::size_t>(height_cells)]),
       open_(static_cast<std::uint32_t>(width_cells * height_cells)) {}
 
-void NearestSourceField::reset(const DistanceField& metric) noexcept {
-  GRIP_ASSERT(metric.width() == width_ && metric.height() == height_);
-  metric_ = &metric;
+void NearestSourceField::reset() noexcept {
   const auto cells = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
   for (std::size_t i = 0; i < cells; ++i) {
     cost_[i] = DistanceField::kUnreachable;
@@ -36,15 +34,15 @@ void NearestSourceField::reset(const DistanceField& metric) noexcept {
   open_.clear();
 }
 
-void NearestSourceField::add_source(std::uint32_t cell) noexcept {
-  GRIP_ASSERT(metric_ != nullptr);
-  if (!metric_->traversable(cell) || cost_[cell] == 0) return;
+void NearestSourceField::add_source(const DistanceField& metric, std::uint32_t cell) noexcept {
+  GRIP_ASSERT(metric.width() == width_ && metric.height() == height_);
+  if (!metric.traversable(cell) || cost_[cell] == 0) return;
   cost_[cell] = 0;
   source_[cell] = cell;
   GRIP_ASSERT(open_.push(cell, 0.0));
   const auto passable = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < width_ && y < height_ &&
-           metric_->traversable(static_cast<std::uint32_t>(y * width_ + x));
+           metric.traversable(static_cast<std::uint32_t>(y * width_ + x));
   };
   while (!open_.empty()) {
     const std::uint32_t u = open_.pop();

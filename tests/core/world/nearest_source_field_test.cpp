@@ -27,13 +27,13 @@ TEST(NearestSourceField, MatchesAFreshWavefrontAfterEveryAddedSource) {
     DistanceField metric = DistanceField::create(w, h, 0.1).value();
     metric.prepare(grid);
     NearestSourceField field = NearestSourceField::create(w, h).value();
-    field.reset(metric);
+    field.reset();
     DistanceField reference = DistanceField::create(w, h, 0.1).value();
     DistanceField single = DistanceField::create(w, h, 0.1).value();
     std::vector<std::uint32_t> sources;
     for (int added = 0; added < 8; ++added) {
       const std::uint32_t c = rng.below(grid.cell_count());
-      field.add_source(c);
+      field.add_source(metric, c);
       if (metric.traversable(c)) sources.push_back(c);
       if (sources.empty()) continue;
       (void)reference.compute(grid, sources);
@@ -58,12 +58,12 @@ TEST(NearestSourceField, IgnoresSourcesThatAreNotTraversableAndResetForgetsAll) 
   DistanceField metric = DistanceField::create(10, 10, 0.1).value();
   metric.prepare(grid);
   NearestSourceField field = NearestSourceField::create(10, 10).value();
-  field.reset(metric);
-  field.add_source(grid.index(5, 5));
+  field.reset();
+  field.add_source(metric, grid.index(5, 5));
   EXPECT_EQ(field.nearest_source(grid.index(0, 0)), NearestSourceField::kNoCell);
-  field.add_source(grid.index(1, 1));
+  field.add_source(metric, grid.index(1, 1));
   EXPECT_EQ(field.nearest_source(grid.index(9, 9)), grid.index(1, 1));
-  field.reset(metric);
+  field.reset();
   EXPECT_EQ(field.nearest_source(grid.index(9, 9)), NearestSourceField::kNoCell);
 }
 

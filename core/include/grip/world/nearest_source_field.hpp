@@ -22,11 +22,12 @@ class NearestSourceField {
 
   static Result<NearestSourceField> create(int width_cells, int height_cells);
 
-  // Removes every source. Traversability is that of `metric`'s last compute()/prepare(); the
-  // metric must outlive the field's use and match its size.
-  void reset(const DistanceField& metric) noexcept;
-  // Makes a traversable cell a source; other cells are ignored.
-  void add_source(std::uint32_t cell) noexcept;
+  // Removes every source.
+  void reset() noexcept;
+  // Makes `cell` a source if it is traversable in `metric` (whose last compute()/prepare()
+  // decides, as for DistanceField::nearest_matching); other cells are ignored. Every call of
+  // one field must pass the same metric, of the field's size.
+  void add_source(const DistanceField& metric, std::uint32_t cell) noexcept;
   // The source nearest to `cell`, or kNoCell when none reaches it.
   std::uint32_t nearest_source(std::uint32_t cell) const noexcept { return source_[cell]; }
   // Path length to it in cost units (DistanceField's), DistanceField::kUnreachable if none.
@@ -40,7 +41,6 @@ class NearestSourceField {
   std::unique_ptr<std::uint32_t[]> cost_;
   std::unique_ptr<std::uint32_t[]> source_;
   IndexedMinHeap open_;
-  const DistanceField* metric_ = nullptr;
 };
 
 }  // namespace grip
