@@ -17,6 +17,26 @@ std::string_view solve_status_name(SolveStatus s) noexcept {
   return "unknown";
 }
 
+std::string_view retain_status_name(RetainStatus s) noexcept {
+  switch (s) {
+    case RetainStatus::kOk:
+      return "ok";
+    case RetainStatus::kUnsupportedSelection:
+      return "unsupported-selection";
+    case RetainStatus::kRootNotInTree:
+      return "root-not-in-tree";
+    case RetainStatus::kRootInCollision:
+      return "root-in-collision";
+    case RetainStatus::kInvalidState:
+      return "invalid-state";
+    case RetainStatus::kGoalOutsideGrid:
+      return "goal-outside-grid";
+    case RetainStatus::kGoalWithoutFreeCell:
+      return "goal-without-free-cell";
+  }
+  return "unknown";
+}
+
 std::string_view stop_reason_name(StopReason r) noexcept {
   switch (r) {
     case StopReason::kGoalReached:
@@ -83,9 +103,12 @@ Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerCo
       cell_state_(free_cells_.capacity()),
       tree_cells_(std::move(tree_cells)),
       goal_cells_(grid.cell_count()),
+      order_(config.max_edges),
+      stack_(config.max_edges),
+      keep_(config.max_edges),
       rng_(config.seed),
       log_a_(std::log(config.score_base_a)),
-      horizon_step_(to_steps(config.safety_horizon_s, config.integration_step_s)),
+      horizon_step_(1),
       min_edge_records_(std::max<std::uint32_t>(
           1U, static_cast<std::uint32_t>(
                   std::ceil(config.min_edge_duration_s / config.record_step_s() - 1e-9)))),
@@ -94,51 +117,50 @@ Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerCo
                                   to_steps(config.min_plan_duration_s, config.integration_step_s))),
       max_plan_steps_(std::min<std::uint32_t>(
           to_steps(config.max_plan_duration_s, config.integration_step_s),
-          (config.states_per_trajectory() - 1U) * config.steps_per_record)) {
-  if (horizon_step_ == 0) horizon_step_ = 1;
-}
+          (config.states_per_trajectory() - 1U) * config.steps_per_record)) {}
 
 template <VehicleModel V>
 Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
-  if (auto s = vehicle_.validate_state(start); !s)
-    return invalid_argument("start: " + s.error().message);
-  if (!std::isfinite(goal.x_m) || !std::isfinite(goal.y_m) || !std::isfinite(goal.radius_m) ||
-      goal.radius_m <= 0.0) {
-    return invalid_argument("goal must have finite coordinates and a radius > 0 (got (" +
-                            std::to_string(goal.x_m) + ", " + std::to_string(goal.y_m) +
-                            ") radius " + std::to_string(goal.radius_m) + ")");
+  // The messages are built here, at start-up; restart() below is the allocation-free core.
+  // Appended piecewise: GCC 12 at -O3 warns falsely (-Wrestrict) on "(" + std::string.
+  std::string where = "at (";
+  where += std::to_string(goal.x_m);
+  where += ", ";
+  where += std::to_string(goal.y_m);
+  where += ") radius ";
+  where += std::to_string(goal.radius_m);
+  switch (restart(start, goal, config_.safety_horizon_s)) {
+    case RetainStatus::kOk:
+      return Ok{};
+    case RetainStatus::kInvalidState:
+      return invalid_argument("start: " + vehicle_.validate_state(start).error().message);
+    case RetainStatus::kGoalOutsideGrid:
+      return invalid_argument("goal " + where + " is not finite with a radius > 0, or lies " +
+                              "outside the grid (" + std::to_string(grid_->width_m()) + " m x " +
+                              std::to_string(grid_->height_m()) + " m)");
+    case RetainStatus::kGoalWithoutFreeCell:
+      return invalid_argument("goal region " + where + " contains no free cell");
+    case RetainStatus::kRootInCollision:
+      return invalid_argument("start (" + std::to_string(state_x(start)) + ", " +
+                              std::to_string(state_y(start)) +
+                              ") puts the chassis in an obstacle or unknown space");
+    case RetainStatus::kUnsupportedSelection:
+    case RetainStatus::kRootNotInTree:
+      break;
   }
-  int gx = 0;
-  int gy = 0;
-  if (!grid_->to_cell(goal.x_m, goal.y_m, gx, gy)) {
-    return invalid_argument("goal (" + std::to_string(goal.x_m) + ", " + std::to_string(goal.y_m) +
-                            ") lies outside the grid (" + std::to_string(grid_->width_m()) +
-                            " m x " + std::to_string(grid_->height_m()) + " m)");
+  return invalid_argument("start: unexpected state");
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::restart(const State& q, const GoalRegion& goal,
+                                 double horizon_s) noexcept {
+  if (!vehicle_.validate_state(q)) return RetainStatus::kInvalidState;
+  if (checker_.stale() || !problem_set_) checker_.refresh();
+  if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
+    return RetainStatus::kRootInCollision;
   }
-  checker_.refresh();
-  if (!checker_.is_free(state_x(start), state_y(start), state_theta(start))) {
-    return invalid_argument("start (" + std::to_string(state_x(start)) + ", " +
-                            std::to_string(state_y(start)) +
-                            ") puts the chassis in an obstacle or unknown space");
-  }
-  // The target set F: free cells whose centres lie in the goal disk.
-  goal_cells_.clear();
-  const int reach = static_cast<int>(std::ceil(goal.radius_m / grid_->resolution())) + 1;
-  for (int cy = gy - reach; cy <= gy + reach; ++cy) {
-    for (int cx = gx - reach; cx <= gx + reach; ++cx) {
-      if (!grid_->in_bounds(cx, cy) || grid_->at(cx, cy) != Cell::kFree) continue;
-      if (goal.contains(grid_->cell_center_x(cx), grid_->cell_center_y(cy))) {
-        GRIP_ASSERT(goal_cells_.push_back(grid_->index(cx, cy)));  // sized to the grid
-      }
-    }
-  }
-  if (goal_cells_.empty()) {
-    return invalid_argument("goal region at (" + std::to_string(goal.x_m) + ", " +
-                            std::to_string(goal.y_m) + ") radius " + std::to_string(goal.radius_m) +
-                            " contains no free cell");
-  }
-  goal_ = goal;
-  rho_field_.compute(*grid_, checker_.clearance(), goal_cells_.span(), config_.rho_clearance_m);
+  if (const RetainStatus s = set_goal(goal); s != RetainStatus::kOk) return s;
+  set_horizon(horizon_s);
 
   free_cells_.clear();
   if (tree_cells_) {
@@ -152,23 +174,242 @@ Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
       GRIP_ASSERT(cell_state_.push_back(TreeState{}));
     }
   }
-
   rng_.reseed(config_.seed);
   stats_ = PlannerStats{};
+  reset_tree(q);
+  problem_set_ = true;
+  return RetainStatus::kOk;
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::set_goal(const GoalRegion& goal) noexcept {
+  int gx = 0;
+  int gy = 0;
+  if (!std::isfinite(goal.radius_m) || goal.radius_m <= 0.0 ||
+      !grid_->to_cell(goal.x_m, goal.y_m, gx, gy)) {
+    return RetainStatus::kGoalOutsideGrid;
+  }
+  // The target set F: free cells whose centres lie in the goal disk.
+  goal_cells_.clear();
+  const int reach = static_cast<int>(std::ceil(goal.radius_m / grid_->resolution())) + 1;
+  for (int cy = gy - reach; cy <= gy + reach; ++cy) {
+    for (int cx = gx - reach; cx <= gx + reach; ++cx) {
+      if (!grid_->in_bounds(cx, cy) || grid_->at(cx, cy) != Cell::kFree) continue;
+      if (goal.contains(grid_->cell_center_x(cx), grid_->cell_center_y(cy))) {
+        GRIP_ASSERT(goal_cells_.push_back(grid_->index(cx, cy)));  // sized to the grid
+      }
+    }
+  }
+  if (goal_cells_.empty()) return RetainStatus::kGoalWithoutFreeCell;
+  goal_ = goal;
+  rho_field_.compute(*grid_, checker_.clearance(), goal_cells_.span(), config_.rho_clearance_m);
+  return RetainStatus::kOk;
+}
+
+template <VehicleModel V>
+void Planner<V>::set_horizon(double horizon_s) noexcept {
+  horizon_step_ = std::max<std::uint32_t>(1U, to_steps(horizon_s, config_.integration_step_s));
+}
+
+template <VehicleModel V>
+void Planner<V>::reset_tree(const State& q) noexcept {
   solution_ = TreeState{};
   heap_.clear();
   live_edges_.clear();
-  const EdgeHandle root = tree_.reset(start);
+  cycle_edges_ = 0;
+  const EdgeHandle root = tree_.reset(q);
   Edge& r = tree_.edge(root);
   r.priority = 1.0;
-  r.rho_m = rho_at(start);
+  r.rho_m = rho_at(q);
   best_ = TreeState{root, 0};
   best_rho_ = r.rho_m;
   register_edge(root);
   if (config_.selection == Selection::kGrip) push_scored(root);
-  if (goal_.contains(state_x(start), state_y(start))) solution_ = best_;
-  problem_set_ = true;
-  return Ok{};
+  if (goal_.contains(state_x(q), state_y(q))) solution_ = best_;
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::retain(TreeState new_root, const GoalRegion& goal,
+                                double horizon_s) noexcept {
+  if (config_.selection != Selection::kGrip) return RetainStatus::kUnsupportedSelection;
+  GRIP_ASSERT(config_.steps_per_record == 1);
+  if (!problem_set_ || new_root.edge == kNoHandle || !tree_.contains(new_root.edge) ||
+      new_root.index > tree_.edge(new_root.edge).last) {
+    return RetainStatus::kRootNotInTree;
+  }
+  new_root = resolve(new_root);
+  if (new_root.edge == kNoHandle) return RetainStatus::kRootNotInTree;
+  const State& q = tree_.edge_state(new_root.edge, new_root.index);
+  if (checker_.stale()) checker_.refresh();
+  if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
+    return RetainStatus::kRootInCollision;
+  }
+  if (const RetainStatus s = set_goal(goal); s != RetainStatus::kOk) return s;
+  set_horizon(horizon_s);
+  retain_stats_ = RetainStats{};
+  retain_stats_.edges_before = tree_.edge_count();
+
+  // Re-root: the part of the edge up to the new root becomes the root (reduced to its last
+  // state); the rest of the tree above is unreachable, since no vehicle drives back in time.
+  const std::uint32_t shift = tree_.step_of(new_root.edge, new_root.index);
+  EdgeHandle root = new_root.edge;
+  if (new_root.index < tree_.edge(root).last) root = tree_.split(root, new_root.index);
+  tree_.unlink(root);
+  tree_.make_root(root);
+  prune_and_order(root, shift);
+  // Everything the walk did not keep goes back to the pools.
+  const std::uint32_t before_release = tree_.edge_count();
+  for (EdgeHandle e = 0; e < tree_.edge_capacity(); ++e) {
+    if (tree_.contains(e) && keep_[e] == 0) tree_.release_edge(e);
+  }
+  retain_stats_.released = before_release - tree_.edge_count();
+  rescore_tree();
+  retain_stats_.edges_kept = tree_.edge_count();
+  cycle_edges_ = 0;
+  return RetainStatus::kOk;
+}
+
+template <VehicleModel V>
+void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift) noexcept {
+  // keep_[e]: 0 released, 1 kept, 2 kept but its children released (it was cut short);
+  // kLeadsToGoal marks, while pruning towards F, the edges with a goal state below them.
+  constexpr std::uint8_t kLeadsToGoal = 4;
+  keep_.clear();
+  for (std::uint32_t e = 0; e < tree_.edge_capacity(); ++e) GRIP_ASSERT(keep_.push_back(0));
+  order_.clear();
+  stack_.clear();
+  GRIP_ASSERT(stack_.push_back(root));
+  while (!stack_.empty()) {
+    const EdgeHandle e = stack_.back();
+    stack_.pop_back();
+    GRIP_ASSERT(order_.push_back(e));
+    for (EdgeHandle c = tree_.edge(e).first_child; c != kNoHandle; c = tree_.edge(c).next_sibling) {
+      GRIP_ASSERT(stack_.push_back(c));
+    }
+  }
+  // Pre-order: every parent comes before its children, so one pass re-times the edges,
+  // checks them against the current map and T, and propagates removals downwards.
+  bool reaches_goal = false;
+  for (const EdgeHandle e : order_) {
+    Edge& edge = tree_.edge(e);
+    if (e == root) {
+      edge.start_step = 0;
+      keep_[e] = 1;
+      continue;
+    }
+    if (keep_[edge.parent] != 1) continue;  // below a removed or shortened edge
+    edge.start_step -= shift;               // times are from the new root
+    std::uint16_t last = edge.last;
+    bool unsafe = false;
+    for (std::uint16_t k = static_cast<std::uint16_t>(edge.first + 1); k <= edge.last; ++k) {
+      const State& qk = tree_.state(edge.trajectory, k);
+      if (!is_free(qk)) {
+        last = static_cast<std::uint16_t>(k - 1);
+        break;
+      }
+      if (config_.safety == SafetyCheck::kAtHorizon && tree_.step_of(e, k) == horizon_step_ &&
+          !contingency_safe(qk)) {
+        last = static_cast<std::uint16_t>(k - 1);
+        unsafe = true;
+        break;
+      }
+      if (goal_.contains(state_x(qk), state_y(qk))) reaches_goal = true;
+    }
+    if (last == edge.last) {
+      keep_[e] = 1;
+      continue;
+    }
+    ++(unsafe ? retain_stats_.cut_unsafe : retain_stats_.cut_by_map);
+    if (last > edge.first) {
+      edge.last = last;
+      keep_[e] = 2;
+    }
+  }
+  // Once a path reaches F, every path that does not is pruned, so that the cycle improves
+  // the solution (Algorithm 1). Reverse pre-order visits children before parents.
+  if (reaches_goal) {
+    for (auto it = order_.end(); it != order_.begin();) {
+      const EdgeHandle e = *--it;
+      if (keep_[e] == 0) continue;
+      const Edge& edge = tree_.edge(e);
+      bool in_goal = false;
+      for (int k = edge.first; k <= edge.last && !in_goal; ++k) {
+        const State& qk = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
+        in_goal = goal_.contains(state_x(qk), state_y(qk));
+      }
+      if (in_goal) keep_[e] = static_cast<std::uint8_t>(keep_[e] | kLeadsToGoal);
+      if ((keep_[e] & kLeadsToGoal) != 0 && e != root) {
+        keep_[edge.parent] = static_cast<std::uint8_t>(keep_[edge.parent] | kLeadsToGoal);
+      }
+    }
+    for (const EdgeHandle e : order_) {
+      if (keep_[e] == 0 || e == root) continue;
+      if ((keep_[e] & kLeadsToGoal) == 0) {
+        keep_[e] = 0;
+        ++retain_stats_.pruned_off_goal;
+      } else {
+        keep_[e] = static_cast<std::uint8_t>(keep_[e] & ~kLeadsToGoal);
+      }
+    }
+    keep_[root] = 1;
+  }
+  // Repair the links of what stays: drop released children from the child lists.
+  for (const EdgeHandle e : order_) {
+    if (keep_[e] == 0) continue;
+    Edge& edge = tree_.edge(e);
+    EdgeHandle previous = kNoHandle;
+    EdgeHandle first = kNoHandle;
+    for (EdgeHandle c = edge.first_child; c != kNoHandle; c = tree_.edge(c).next_sibling) {
+      if (keep_[e] != 1 || keep_[c] == 0) continue;
+      tree_.edge(c).prev_sibling = previous;
+      if (previous == kNoHandle) {
+        first = c;
+      } else {
+        tree_.edge(previous).next_sibling = c;
+      }
+      previous = c;
+    }
+    if (previous != kNoHandle) tree_.edge(previous).next_sibling = kNoHandle;
+    edge.first_child = first;
+  }
+}
+
+template <VehicleModel V>
+void Planner<V>::rescore_tree() noexcept {
+  // Children of the root get priority 1, then Eq. 2 down the tree; rho against the new map and
+  // target; the heap is rebuilt; the best state and the solution are found again.
+  heap_.clear();
+  solution_ = TreeState{};
+  best_rho_ = std::numeric_limits<double>::infinity();
+  const EdgeHandle root = tree_.root();
+  for (const EdgeHandle e : order_) {
+    if (keep_[e] == 0) continue;
+    Edge& edge = tree_.edge(e);
+    if (e == root) {
+      edge.priority = 1.0;
+    } else {
+      edge.priority =
+          edge.parent == root ? 1.0 : std::fma(2.0, tree_.edge(edge.parent).priority, 1.0);
+    }
+    edge.rho_m = e == root ? rho_at(tree_.edge_state(e, edge.last)) : edge_rho(e);
+    push_scored(e);
+    const int first = e == root ? edge.first : edge.first + 1;
+    for (int k = first; k <= edge.last; ++k) {
+      const State& qk = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
+      const auto index = static_cast<std::uint16_t>(k);
+      const double rho = rho_at(qk);
+      if (rho < best_rho_) {
+        best_rho_ = rho;
+        best_ = TreeState{e, index};
+      }
+      if (goal_.contains(state_x(qk), state_y(qk)) &&
+          (!solved() || tree_.step_of(e, index) < tree_.step_of(solution_.edge, solution_.index))) {
+        solution_ = TreeState{e, index};
+      }
+    }
+  }
+  if (best_rho_ == std::numeric_limits<double>::infinity())
+    best_ = TreeState{root, tree_.edge(root).last};
 }
 
 template <VehicleModel V>
@@ -219,7 +460,7 @@ bool Planner<V>::iterate() noexcept {
       push_scored(head);
     }
     Edge& n = tree_.edge(added);
-    n.priority = static_cast<double>(stats_.edges_added - 1);  // p(e) = i, edges before it
+    n.priority = static_cast<double>(cycle_edges_ - 1);  // p(e) = i, edges before it
     push_scored(added);
   }
   push_scored(selected);
@@ -265,7 +506,10 @@ TreeState Planner<V>::resolve(TreeState s) const noexcept {
   // Splitting keeps the tail under the old handle; states before its first index now belong
   // to the heads above it.
   if (s.edge == kNoHandle) return s;
-  while (s.index < tree_.edge(s.edge).first) s.edge = tree_.edge(s.edge).parent;
+  while (s.index < tree_.edge(s.edge).first) {
+    s.edge = tree_.edge(s.edge).parent;
+    if (s.edge == kNoHandle) return TreeState{};  // before the root: not in the tree
+  }
   const Edge& edge = tree_.edge(s.edge);
   if (s.index == edge.first && edge.parent != kNoHandle) {
     return TreeState{edge.parent, tree_.edge(edge.parent).last};
@@ -296,13 +540,21 @@ EdgeHandle Planner<V>::expand_from(TreeState from) noexcept {
   Edge& n = tree_.edge(added);
   n.rho_m = p.rho_m;
   ++stats_.edges_added;
+  ++cycle_edges_;
   if (attach != from.edge) register_edge(attach);
   register_edge(added);
   if (p.rho_m < best_rho_) {
     best_rho_ = p.rho_m;
     best_ = TreeState{added, p.rho_index};
   }
-  if (p.reached_goal && !solved()) solution_ = TreeState{added, p.last};
+  // A later path to the goal replaces the solution when it gets there sooner (replanning
+  // keeps growing the tree to improve the committed trajectory).
+  if (p.reached_goal) {
+    const TreeState current = resolve(solution_);
+    if (!solved() || tree_.step_of(added, p.last) < tree_.step_of(current.edge, current.index)) {
+      solution_ = TreeState{added, p.last};
+    }
+  }
   return added;
 }
 
@@ -426,6 +678,20 @@ void Planner<V>::register_edge(EdgeHandle e) noexcept {
 template <VehicleModel V>
 TreeState Planner<V>::best_state() const noexcept {
   return resolve(solved() ? solution_ : best_);
+}
+
+template <VehicleModel V>
+TreeState Planner<V>::state_at_step(TreeState s, std::uint32_t step) const noexcept {
+  s = resolve(s);
+  if (s.edge == kNoHandle || step > tree_.step_of(s.edge, s.index)) return TreeState{};
+  for (EdgeHandle e = s.edge; e != kNoHandle; e = tree_.edge(e).parent) {
+    const Edge& edge = tree_.edge(e);
+    if (step < edge.start_step) continue;
+    const std::uint32_t offset = (step - edge.start_step) / config_.steps_per_record;
+    if ((step - edge.start_step) % config_.steps_per_record != 0) return TreeState{};
+    return resolve(TreeState{e, static_cast<std::uint16_t>(edge.first + offset)});
+  }
+  return TreeState{};
 }
 
 template <VehicleModel V>

@@ -71,6 +71,28 @@ struct PlannerStats {
   bool pool_exhausted = false;
 };
 
+// Outcome of the allocation-free replanning calls (retain, restart).
+enum class RetainStatus {
+  kOk,
+  kUnsupportedSelection,  // retainment is GRIP's; the baselines are standalone planners
+  kRootNotInTree,
+  kRootInCollision,  // the new map puts the chassis at the new root in collision
+  kInvalidState,     // NaN or outside the vehicle's limits
+  kGoalOutsideGrid,
+  kGoalWithoutFreeCell,
+};
+std::string_view retain_status_name(RetainStatus s) noexcept;
+
+// What one retainment kept and pruned (edge counts).
+struct RetainStats {
+  std::uint32_t edges_before = 0;
+  std::uint32_t cut_by_map = 0;       // edges cut where their trajectory now collides
+  std::uint32_t cut_unsafe = 0;       // edges cut where the state at T cannot brake safely
+  std::uint32_t pruned_off_goal = 0;  // not leading to the goal once a path does
+  std::uint32_t released = 0;         // returned to the pool: above the new root, cut or pruned
+  std::uint32_t edges_kept = 0;       // the tree carried over into the cycle
+};
+
 // A state reached in the tree: recorded state k of edge e.
 struct TreeState {
   EdgeHandle edge = kNoHandle;
@@ -92,15 +114,35 @@ class Planner {
   // outside the grid or with no free cell.
   Status set_problem(const State& start, const GoalRegion& goal);
 
+  // Replanning (Algorithm 1, first half; allocation-free). Re-roots the tree at `new_root`,
+  // the state the vehicle will be in when the next plan starts, and returns everything not
+  // below it to the pools; prunes what the current grid invalidates (the grid may have changed
+  // since the last call) and what cannot brake safely from the state reached at `horizon_s`
+  // (T, the next cycle's duration; rounded to integration steps); once a path reaches the goal
+  // keeps only paths that do; resets priorities (children of the root 1, then Eq. 2 down the
+  // tree), recomputes rho against `goal` and rebuilds the heap. On an error the tree is as it
+  // was. Needs steps_per_record == 1 so that every checked state is a recorded one.
+  RetainStatus retain(TreeState new_root, const GoalRegion& goal, double horizon_s) noexcept;
+  // Starts a fresh tree at q (when q is not on the tree), allocation-free.
+  RetainStatus restart(const State& q, const GoalRegion& goal, double horizon_s) noexcept;
+  const RetainStats& last_retain() const noexcept { return retain_stats_; }
+
   // Grows the tree until the goal is reached, should_stop() returns true (checked once per
   // iteration), or the pools are exhausted.
   SolveResult solve(FunctionRef<bool()> should_stop) noexcept;
 
   bool solved() const noexcept { return solution_.edge != kNoHandle; }
+  // The root: the state the tree grows from (the vehicle's state when the plan starts).
+  TreeState root_state() const noexcept {
+    return TreeState{tree_.root(), tree_.edge(tree_.root()).last};
+  }
   // The solution if solved, else the tree state closest to the goal by rho.
   TreeState best_state() const noexcept;
   double best_rho_m() const noexcept { return best_rho_; }
 
+  // The state reached `step` integration steps from the root on the path to s, or an empty
+  // TreeState when the path is shorter. With steps_per_record == 1 every step is recorded.
+  TreeState state_at_step(TreeState s, std::uint32_t step) const noexcept;
   // Writes the plan from the root to s into `out`; false if it does not fit.
   bool extract_plan(TreeState s, VectorView<PlanStep>& out) const noexcept;
   // Calls visit(state) for every recorded state from the root to s, in order (allocates).
@@ -137,6 +179,11 @@ class Planner {
           std::optional<NearestSourceField> tree_cells);
 
   bool iterate() noexcept;
+  RetainStatus set_goal(const GoalRegion& goal) noexcept;
+  void set_horizon(double horizon_s) noexcept;
+  void reset_tree(const State& q) noexcept;
+  void prune_and_order(EdgeHandle root, std::uint32_t shift) noexcept;
+  void rescore_tree() noexcept;
   TreeState select() noexcept;
   TreeState select_rrt() noexcept;
   TreeState random_state_along(EdgeHandle e) noexcept;
@@ -167,9 +214,14 @@ class Planner {
   BoundedVector<TreeState> cell_state_;           // RRT: a tree state in each grid cell
   std::optional<NearestSourceField> tree_cells_;  // RRT: nearest tree cell under rho_A*
   BoundedVector<std::uint32_t> goal_cells_;
+  BoundedVector<EdgeHandle> order_;   // retainment: the kept tree in pre-order
+  BoundedVector<EdgeHandle> stack_;   // retainment: depth-first walk
+  BoundedVector<std::uint8_t> keep_;  // retainment: per edge handle, see prune_and_order
   Random rng_;
   GoalRegion goal_;
   PlannerStats stats_;
+  RetainStats retain_stats_;
+  std::uint64_t cycle_edges_ = 0;  // i of Eq. 2: edges propagated before, this cycle
   TreeState solution_;
   TreeState best_;
   double best_rho_ = std::numeric_limits<double>::infinity();

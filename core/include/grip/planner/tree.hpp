@@ -129,6 +129,38 @@ class Tree {
     return e;
   }
 
+  // Removes e from its parent's list of children (its own subtree stays attached to it).
+  void unlink(EdgeHandle e) noexcept {
+    Edge& edge = edges_[e];
+    if (edge.prev_sibling != kNoHandle) {
+      edges_[edge.prev_sibling].next_sibling = edge.next_sibling;
+    } else if (edge.parent != kNoHandle) {
+      edges_[edge.parent].first_child = edge.next_sibling;
+    }
+    if (edge.next_sibling != kNoHandle) edges_[edge.next_sibling].prev_sibling = edge.prev_sibling;
+    edge.parent = kNoHandle;
+    edge.next_sibling = kNoHandle;
+    edge.prev_sibling = kNoHandle;
+  }
+
+  // Returns e to the pool, and its trajectory once no edge shares it. Links are not repaired:
+  // the caller releases whole subtrees or unlinks first.
+  void release_edge(EdgeHandle e) noexcept {
+    const TrajectoryHandle t = edges_[e].trajectory;
+    GRIP_ASSERT(trajectories_[t].edge_refs > 0);
+    if (--trajectories_[t].edge_refs == 0) trajectories_.release(t);
+    edges_.release(e);
+  }
+
+  // Makes the detached edge e, reduced to its last state, the root (tree retainment).
+  void make_root(EdgeHandle e) noexcept {
+    Edge& edge = edges_[e];
+    GRIP_ASSERT(edge.parent == kNoHandle);
+    edge.first = edge.last;
+    edge.start_step = 0;
+    root_ = e;
+  }
+
   // Integration steps from the root to e's last state.
   std::uint32_t end_step(EdgeHandle e) const noexcept {
     const Edge& edge = edges_[e];

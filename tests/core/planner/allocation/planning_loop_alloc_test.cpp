@@ -89,3 +89,42 @@ TEST_F(PlanningLoopAllocationTest, TheAllLeavesVariantAndTheBaselinesAllocateNot
 
 }  // namespace
 }  // namespace grip
+
+namespace grip {
+namespace {
+
+TEST(ReplanningAllocation, RetainmentWithANewMapAndTargetAllocatesNothing) {
+  ASSERT_TRUE(alloc_counter::interposed());
+  Scene scene = make_scene(SceneId::kRooms).value();
+  const Car car = Car::create({}).value();
+  PlannerConfig config;
+  config.steps_per_record = 1;
+  config.stop_at_goal = false;
+  config.max_edges = 8000;
+  config.max_trajectories = 4000;
+  auto planner = Planner<Car>::create(car, scene.grid, config).value();
+  const GoalRegion goals[2] = {{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m},
+                               {15.0, 5.0, 1.0}};
+  ASSERT_TRUE(planner.set_problem(
+      car.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad), goals[0]));
+  const PlannerStats& stats = planner.stats();
+
+  alloc_counter::arm();
+  int retained = 0;
+  for (int cycle = 0; cycle < 200; ++cycle) {
+    const std::uint64_t target = stats.edges_added + 30;
+    (void)planner.solve([&] { return stats.edges_added >= target; });
+    // The map changes (a cell far from the vehicle toggles) and the target alternates.
+    scene.grid.set(150, 280 - cycle % 20, cycle % 2 == 0 ? Cell::kObstacle : Cell::kFree);
+    TreeState next = planner.state_at_step(planner.best_state(), 1);
+    if (next.edge == kNoHandle) next = planner.root_state();
+    retained += planner.retain(next, goals[cycle % 2], 1.0) == RetainStatus::kOk ? 1 : 0;
+  }
+  alloc_counter::disarm();
+
+  EXPECT_EQ(retained, 200);
+  EXPECT_EQ(alloc_counter::counts().allocations + alloc_counter::counts().deallocations, 0U);
+}
+
+}  // namespace
+}  // namespace grip

@@ -1,0 +1,240 @@
+// Tree retainment (Algorithm 1, first half): re-rooting, pruning by the map, safety at the new
+// T, pruning paths not leading to F, priority reset, heap rebuild and pool accounting.
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <vector>
+
+#include "grip/planner/contingency.hpp"
+#include "grip/planner/planner.hpp"
+#include "test_support.hpp"
+
+namespace grip {
+namespace {
+
+class RetainmentTest : public ::testing::Test {
+ protected:
+  OccupancyGrid grid = test::walled_room(14.0);
+  DdAcceleration robot = DdAcceleration::create({}).value();
+  PlannerConfig config;
+  std::optional<Planner<DdAcceleration>> planner;
+  GoalRegion goal{11.5, 11.5, 1.0};
+
+  void SetUp() override {
+    config.steps_per_record = 1;  // the replanning configuration
+    config.stop_at_goal = false;
+    config.max_edges = 20'000;
+    config.max_trajectories = 10'000;
+    config.seed = 4;
+    planner.emplace(Planner<DdAcceleration>::create(robot, grid, config).value());
+    ASSERT_TRUE(planner->set_problem(robot.rest_state(2, 2, 0.7), goal));
+  }
+  // Adds `edges` edges, or gives up after 50 iterations per edge (a cornered tree).
+  void grow(std::uint64_t edges) {
+    const std::uint64_t target = planner->stats().edges_added + edges;
+    const std::uint64_t give_up = planner->stats().iterations + 50 * edges;
+    (void)planner->solve([&] {
+      return planner->stats().edges_added >= target || planner->stats().iterations >= give_up;
+    });
+  }
+  // Edges in the subtree below (and including) e, by a walk of the child lists.
+  std::uint32_t subtree_size(EdgeHandle e) const {
+    std::uint32_t n = 1;
+    for (EdgeHandle c = planner->tree().edge(e).first_child; c != kNoHandle;
+         c = planner->tree().edge(c).next_sibling) {
+      n += subtree_size(c);
+    }
+    return n;
+  }
+  // Every in-use edge is reachable from the root and every trajectory in use is referenced.
+  void expect_pools_consistent() const {
+    const auto& tree = planner->tree();
+    EXPECT_EQ(subtree_size(tree.root()), tree.edge_count());
+    std::set<TrajectoryHandle> referenced;
+    planner->visit_edges([&](EdgeHandle, const Edge& e) { referenced.insert(e.trajectory); });
+    EXPECT_EQ(referenced.size(), tree.trajectory_count());
+    EXPECT_EQ(planner->heap_size(), tree.edge_count());
+  }
+  TreeState state_along_best(std::uint32_t step) const {
+    return planner->state_at_step(planner->best_state(), step);
+  }
+};
+
+TEST_F(RetainmentTest, ReRootingKeepsExactlyTheSubtreeBelowTheNewRootAndShiftsItsTimes) {
+  grow(600);
+  const TreeState best = planner->best_state();
+  const std::uint32_t best_step = planner->tree().step_of(best.edge, best.index);
+  ASSERT_GT(best_step, 40U);
+  const TreeState new_root = state_along_best(20);
+  ASSERT_NE(new_root.edge, kNoHandle);
+  const auto root_state = planner->tree().edge_state(new_root.edge, new_root.index);
+  // The subtree below the new root: the rest of its edge, plus the edge's children.
+  const Edge& e = planner->tree().edge(new_root.edge);
+  const std::uint32_t expected = subtree_size(new_root.edge) + (new_root.index == e.last ? 0 : 1);
+  const auto best_state = planner->tree().edge_state(best.edge, best.index);
+
+  const RetainStatus status = planner->retain(new_root, goal, 100.0);  // T beyond every path
+  ASSERT_EQ(status, RetainStatus::kOk) << retain_status_name(status);
+
+  const TreeState root = planner->root_state();
+  EXPECT_EQ(planner->tree().edge_state(root.edge, root.index), root_state);
+  EXPECT_EQ(planner->tree().edge_count(), expected);
+  EXPECT_EQ(planner->last_retain().edges_kept, expected);
+  // The best state is still in the tree, 20 steps closer in time.
+  const TreeState moved = planner->best_state();
+  EXPECT_EQ(planner->tree().edge_state(moved.edge, moved.index), best_state);
+  EXPECT_EQ(planner->tree().step_of(moved.edge, moved.index), best_step - 20);
+  expect_pools_consistent();
+}
+
+TEST_F(RetainmentTest, EdgesTheNewMapInvalidatesAreCutAndWhatStaysIsCollisionFree) {
+  grow(1500);
+  // A newly sensed obstacle across the middle of the room.
+  grid.fill_rect(4.0, 0.3, 5.0, 9.0, Cell::kObstacle);
+  ASSERT_EQ(planner->retain(planner->root_state(), goal, 100.0), RetainStatus::kOk);
+  EXPECT_GT(planner->last_retain().cut_by_map, 0U);
+  std::size_t states = 0;
+  planner->visit_edges([&](EdgeHandle, const Edge& edge) {
+    for (int k = edge.first; k <= edge.last; ++k) {
+      const auto& q = planner->tree().state(edge.trajectory, static_cast<std::uint32_t>(k));
+      EXPECT_TRUE(planner->checker().is_free(q[0], q[1], q[2]));
+      ++states;
+    }
+  });
+  EXPECT_GT(states, 100U);
+  expect_pools_consistent();
+}
+
+TEST_F(RetainmentTest, EveryStateReachedAtTheNewTCanBrakeSafely) {
+  grow(2000);
+  grid.fill_rect(6.0, 6.0, 7.0, 13.7, Cell::kObstacle);
+  const double horizon_s = 3.0;
+  ASSERT_EQ(planner->retain(planner->root_state(), goal, horizon_s), RetainStatus::kOk);
+  const auto horizon =
+      static_cast<std::uint32_t>(std::lround(horizon_s / config.integration_step_s));
+  std::size_t crossing = 0;
+  planner->visit_edges([&](EdgeHandle h, const Edge& edge) {
+    if (h == planner->tree().root()) return;
+    for (int k = edge.first + 1; k <= edge.last; ++k) {
+      if (planner->tree().step_of(h, static_cast<std::uint16_t>(k)) != horizon) continue;
+      ++crossing;
+      std::uint64_t checks = 0;
+      EXPECT_TRUE(contingency_is_collision_free(
+          robot, planner->checker(),
+          planner->tree().state(edge.trajectory, static_cast<std::uint32_t>(k)),
+          config.integration_step_s, checks));
+    }
+  });
+  EXPECT_GT(crossing, 0U);
+}
+
+TEST_F(RetainmentTest, OnceAPathReachesTheGoalOnlyPathsToTheGoalAreKept) {
+  (void)planner->solve([&] { return planner->solved() || planner->stats().edges_added > 15'000; });
+  ASSERT_TRUE(planner->solved());
+  grow(300);
+  ASSERT_EQ(planner->retain(planner->root_state(), goal, 100.0), RetainStatus::kOk);
+  EXPECT_GT(planner->last_retain().pruned_off_goal, 0U);
+  ASSERT_TRUE(planner->solved());
+  // Every leaf ends a path that passes through the goal region.
+  std::size_t leaves = 0;
+  planner->visit_edges([&](EdgeHandle h, const Edge& edge) {
+    if (edge.first_child != kNoHandle) return;
+    ++leaves;
+    bool through_goal = false;
+    planner->visit_path(TreeState{h, edge.last}, [&](const auto& q) {
+      through_goal = through_goal || goal.contains(q[0], q[1]);
+    });
+    EXPECT_TRUE(through_goal);
+  });
+  EXPECT_GT(leaves, 0U);
+  expect_pools_consistent();
+}
+
+TEST_F(RetainmentTest, PrioritiesAreResetByEq2AndScoresUseTheNewTarget) {
+  grow(800);
+  const GoalRegion new_goal{2.0, 11.5, 1.0};
+  ASSERT_EQ(planner->retain(planner->root_state(), new_goal, 100.0), RetainStatus::kOk);
+  const auto& tree = planner->tree();
+  const EdgeHandle root = tree.root();
+  planner->visit_edges([&](EdgeHandle h, const Edge& edge) {
+    if (h == root) return;
+    const double expected = edge.parent == root ? 1.0 : 2.0 * tree.edge(edge.parent).priority + 1.0;
+    EXPECT_EQ(edge.priority, expected);
+    double rho = INFINITY;
+    for (int k = edge.first + 1; k <= edge.last; ++k) {
+      const auto& q = tree.state(edge.trajectory, static_cast<std::uint32_t>(k));
+      rho = std::min(rho, planner->rho_field().distance_m(q[0], q[1]));
+    }
+    EXPECT_DOUBLE_EQ(edge.rho_m, rho);
+  });
+  // The heap was rebuilt: its minimum is the minimum score over the tree.
+  const double top = planner->log_score(planner->peek_selection());
+  planner->visit_edges([&](EdgeHandle h, const Edge&) { EXPECT_GE(planner->log_score(h), top); });
+  EXPECT_EQ(planner->heap_size(), tree.edge_count());
+}
+
+TEST_F(RetainmentTest, ThousandsOfCyclesLeakNothing) {
+  for (int cycle = 0; cycle < 2000; ++cycle) {
+    grow(40);
+    TreeState next = state_along_best(1);
+    if (next.edge == kNoHandle) next = planner->root_state();
+    ASSERT_EQ(planner->retain(next, goal, 1.0), RetainStatus::kOk) << "cycle " << cycle;
+    ASSERT_EQ(subtree_size(planner->tree().root()), planner->tree().edge_count());
+    ASSERT_FALSE(planner->stats().pool_exhausted);
+  }
+  expect_pools_consistent();
+}
+
+TEST_F(RetainmentTest, OnAStaticMapTheTimeToTheGoalNeverGrowsAcrossCycles) {
+  (void)planner->solve([&] { return planner->solved() || planner->stats().edges_added > 15'000; });
+  ASSERT_TRUE(planner->solved());
+  double previous_arrival = INFINITY;
+  std::uint32_t elapsed = 0;  // the root advances one step per cycle along the solution
+  for (int cycle = 0; cycle < 30; ++cycle) {
+    const TreeState s = planner->best_state();
+    const double arrival = elapsed + planner->tree().step_of(s.edge, s.index);
+    EXPECT_LE(arrival, previous_arrival) << "cycle " << cycle;
+    previous_arrival = arrival;
+    const TreeState next = planner->state_at_step(s, 1);
+    ASSERT_NE(next.edge, kNoHandle);
+    ASSERT_EQ(planner->retain(next, goal, 1.0), RetainStatus::kOk);
+    ++elapsed;
+    grow(100);
+  }
+}
+
+TEST_F(RetainmentTest, RefusedRetainmentsLeaveTheTreeAsItWas) {
+  grow(300);
+  const std::uint32_t edges = planner->tree().edge_count();
+  EXPECT_EQ(planner->retain(TreeState{}, goal, 1.0), RetainStatus::kRootNotInTree);
+  ASSERT_EQ(planner->retain(planner->root_state(), goal, 1.0), RetainStatus::kOk);
+  const std::uint32_t kept = planner->tree().edge_count();
+  // Index 0 of the root's trajectory lies before the root once the tree was re-rooted.
+  EXPECT_EQ(planner->retain(TreeState{planner->tree().root(), 0}, goal, 1.0),
+            planner->tree().edge(planner->tree().root()).last == 0 ? RetainStatus::kOk
+                                                                   : RetainStatus::kRootNotInTree);
+  EXPECT_EQ(planner->retain(planner->root_state(), GoalRegion{40, 4, 1}, 1.0),
+            RetainStatus::kGoalOutsideGrid);
+  const TreeState root = planner->root_state();
+  const auto& q = planner->tree().edge_state(root.edge, root.index);
+  grid.fill_rect(q[0] - 0.2, q[1] - 0.2, q[0] + 0.2, q[1] + 0.2, Cell::kObstacle);
+  EXPECT_EQ(planner->retain(planner->root_state(), goal, 1.0), RetainStatus::kRootInCollision);
+  EXPECT_EQ(planner->tree().edge_count(), kept);
+  EXPECT_LE(kept, edges);
+}
+
+TEST(RetainmentSelection, BaselinesDoNotRetain) {
+  const OccupancyGrid grid = test::walled_room(8.0);
+  const auto robot = DdVelocity::create({}).value();
+  PlannerConfig config;
+  config.selection = Selection::kRrt;
+  config.steps_per_record = 1;
+  auto planner = Planner<DdVelocity>::create(robot, grid, config).value();
+  const GoalRegion goal{6, 6, 0.5};
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), goal));
+  EXPECT_EQ(planner.retain(planner.root_state(), goal, 1.0), RetainStatus::kUnsupportedSelection);
+}
+
+}  // namespace
+}  // namespace grip
