@@ -8,5 +8,6 @@ namespace grip::tools {
 void register_scene_command(CLI::App& app);
 void register_plan_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
+void register_stress_command(CLI::App& app);
 
 }  // namespace grip::tools

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   grip::tools::register_scene_command(app);
   grip::tools::register_plan_command(app);
   grip::tools::register_bench_command(app);
+  grip::tools::register_stress_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

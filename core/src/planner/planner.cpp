@@ -106,9 +106,17 @@ Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerCo
       order_(config.max_edges),
       stack_(config.max_edges),
       keep_(config.max_edges),
+      subtree_cost_(config.max_edges),
       rng_(config.seed),
       log_a_(std::log(config.score_base_a)),
       horizon_step_(1),
+      // Time weighs a quarter of top speed: a vehicle accelerating from rest at 0.6 m/s^2
+      // would otherwise never look better than its start, and a long meander still loses.
+      cost_speed_(0.25 * vehicle.max_speed_m_s()),
+      // Retainment samples rho every 0.2 s of trajectory: Eq. 1 takes states "sampled along
+      // e", and a full scan of every state of a big tree would not fit a cycle.
+      rescore_stride_(std::max<std::uint32_t>(
+          1U, static_cast<std::uint32_t>(std::lround(0.2 / config.record_step_s())))),
       min_edge_records_(std::max<std::uint32_t>(
           1U, static_cast<std::uint32_t>(
                   std::ceil(config.min_edge_duration_s / config.record_step_s() - 1e-9)))),
@@ -117,7 +125,11 @@ Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerCo
                                   to_steps(config.min_plan_duration_s, config.integration_step_s))),
       max_plan_steps_(std::min<std::uint32_t>(
           to_steps(config.max_plan_duration_s, config.integration_step_s),
-          (config.states_per_trajectory() - 1U) * config.steps_per_record)) {}
+          (config.states_per_trajectory() - 1U) * config.steps_per_record)) {
+  for (std::uint32_t e = 0; e < config.max_edges; ++e) {
+    GRIP_ASSERT(subtree_cost_.push_back(std::numeric_limits<double>::infinity()));
+  }
+}
 
 template <VehicleModel V>
 Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
@@ -177,6 +189,7 @@ RetainStatus Planner<V>::restart(const State& q, const GoalRegion& goal,
   rng_.reseed(config_.seed);
   stats_ = PlannerStats{};
   reset_tree(q);
+  validated_revision_ = grid_->revision();
   problem_set_ = true;
   return RetainStatus::kOk;
 }
@@ -221,16 +234,17 @@ void Planner<V>::reset_tree(const State& q) noexcept {
   Edge& r = tree_.edge(root);
   r.priority = 1.0;
   r.rho_m = rho_at(q);
-  best_ = TreeState{root, 0};
+  best_ = TreeState{root, 0};  // until a state at least T away exists
   best_rho_ = r.rho_m;
+  best_cost_m_ = std::numeric_limits<double>::infinity();
   register_edge(root);
   if (config_.selection == Selection::kGrip) push_scored(root);
   if (goal_.contains(state_x(q), state_y(q))) solution_ = best_;
 }
 
 template <VehicleModel V>
-RetainStatus Planner<V>::retain(TreeState new_root, const GoalRegion& goal,
-                                double horizon_s) noexcept {
+RetainStatus Planner<V>::retain(TreeState new_root, const GoalRegion& goal, double horizon_s,
+                                const CellBox* newly_blocked) noexcept {
   if (config_.selection != Selection::kGrip) return RetainStatus::kUnsupportedSelection;
   GRIP_ASSERT(config_.steps_per_record == 1);
   if (!problem_set_ || new_root.edge == kNoHandle || !tree_.contains(new_root.edge) ||
@@ -256,7 +270,9 @@ RetainStatus Planner<V>::retain(TreeState new_root, const GoalRegion& goal,
   if (new_root.index < tree_.edge(root).last) root = tree_.split(root, new_root.index);
   tree_.unlink(root);
   tree_.make_root(root);
-  prune_and_order(root, shift);
+  const bool map_changed = grid_->revision() != validated_revision_;
+  prune_and_order(root, shift, map_changed, newly_blocked);
+  validated_revision_ = grid_->revision();
   // Everything the walk did not keep goes back to the pools.
   const std::uint32_t before_release = tree_.edge_count();
   for (EdgeHandle e = 0; e < tree_.edge_capacity(); ++e) {
@@ -270,10 +286,11 @@ RetainStatus Planner<V>::retain(TreeState new_root, const GoalRegion& goal,
 }
 
 template <VehicleModel V>
-void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift) noexcept {
+void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift, bool map_changed,
+                                 const CellBox* newly_blocked) noexcept {
   // keep_[e]: 0 released, 1 kept, 2 kept but its children released (it was cut short);
-  // kLeadsToGoal marks, while pruning towards F, the edges with a goal state below them.
-  constexpr std::uint8_t kLeadsToGoal = 4;
+  // kInGoal marks edges with a sampled state in F, then those with one below them.
+  constexpr std::uint8_t kInGoal = 4;
   keep_.clear();
   for (std::uint32_t e = 0; e < tree_.edge_capacity(); ++e) GRIP_ASSERT(keep_.push_back(0));
   order_.clear();
@@ -287,9 +304,22 @@ void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift) noexcept 
       GRIP_ASSERT(stack_.push_back(c));
     }
   }
+
+  // Which states the new map can have invalidated: none when it did not change; those within
+  // the chassis' reach of the newly blocked cells when the caller says where; else all.
+  const bool check_all = map_changed && newly_blocked == nullptr;
+  const bool check_some = map_changed && newly_blocked != nullptr && !newly_blocked->empty();
+  double box_x0 = 0.0, box_y0 = 0.0, box_x1 = 0.0, box_y1 = 0.0;
+  if (check_some) {
+    const double reach = checker_.checked_footprint().circumscribed_radius() + grid_->resolution();
+    box_x0 = grid_->origin_x() + newly_blocked->x0 * grid_->resolution() - reach;
+    box_y0 = grid_->origin_y() + newly_blocked->y0 * grid_->resolution() - reach;
+    box_x1 = grid_->origin_x() + (newly_blocked->x1 + 1) * grid_->resolution() + reach;
+    box_y1 = grid_->origin_y() + (newly_blocked->y1 + 1) * grid_->resolution() + reach;
+  }
+
   // Pre-order: every parent comes before its children, so one pass re-times the edges,
-  // checks them against the current map and T, and propagates removals downwards.
-  bool reaches_goal = false;
+  // checks them against the new map and T, and propagates removals downwards.
   for (const EdgeHandle e : order_) {
     Edge& edge = tree_.edge(e);
     if (e == root) {
@@ -301,19 +331,28 @@ void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift) noexcept 
     edge.start_step -= shift;               // times are from the new root
     std::uint16_t last = edge.last;
     bool unsafe = false;
-    for (std::uint16_t k = static_cast<std::uint16_t>(edge.first + 1); k <= edge.last; ++k) {
-      const State& qk = tree_.state(edge.trajectory, k);
-      if (!is_free(qk)) {
-        last = static_cast<std::uint16_t>(k - 1);
-        break;
+    if (check_all || check_some) {
+      for (std::uint16_t k = static_cast<std::uint16_t>(edge.first + 1); k <= edge.last; ++k) {
+        const State& qk = tree_.state(edge.trajectory, k);
+        const double x = state_x(qk);
+        const double y = state_y(qk);
+        const bool near = check_all || (x >= box_x0 && x <= box_x1 && y >= box_y0 && y <= box_y1);
+        if (near && !is_free(qk)) {
+          last = static_cast<std::uint16_t>(k - 1);
+          break;
+        }
       }
-      if (config_.safety == SafetyCheck::kAtHorizon && tree_.step_of(e, k) == horizon_step_ &&
-          !contingency_safe(qk)) {
+    }
+    // The state reached at T, if this edge holds it, must be able to brake (one state, found
+    // by its time, not by a scan).
+    const std::uint32_t t_offset = horizon_step_ - std::min(horizon_step_, edge.start_step);
+    if (config_.safety == SafetyCheck::kAtHorizon && edge.start_step < horizon_step_ &&
+        t_offset <= static_cast<std::uint32_t>(last - edge.first)) {
+      const auto k = static_cast<std::uint16_t>(edge.first + t_offset);
+      if (!contingency_safe(tree_.state(edge.trajectory, k))) {
         last = static_cast<std::uint16_t>(k - 1);
         unsafe = true;
-        break;
       }
-      if (goal_.contains(state_x(qk), state_y(qk))) reaches_goal = true;
     }
     if (last == edge.last) {
       keep_[e] = 1;
@@ -325,34 +364,42 @@ void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift) noexcept 
       keep_[e] = 2;
     }
   }
+
+  // Rho against the new target (Eq. 1 over states sampled along each edge) and membership of
+  // F, in one pass; reverse pre-order then carries "leads to F" up to the root.
+  bool reaches_goal = false;
+  for (const EdgeHandle e : order_) {
+    if (keep_[e] == 0) continue;
+    Edge& edge = tree_.edge(e);
+    bool in_goal = false;
+    edge.rho_m = e == root ? rho_at(tree_.edge_state(e, edge.last))
+                           : sampled_rho(e, rescore_stride_, &in_goal);
+    if (in_goal) {
+      keep_[e] = static_cast<std::uint8_t>(keep_[e] | kInGoal);
+      reaches_goal = true;
+    }
+  }
   // Once a path reaches F, every path that does not is pruned, so that the cycle improves
-  // the solution (Algorithm 1). Reverse pre-order visits children before parents.
+  // the solution (Algorithm 1).
   if (reaches_goal) {
     for (auto it = order_.end(); it != order_.begin();) {
       const EdgeHandle e = *--it;
-      if (keep_[e] == 0) continue;
-      const Edge& edge = tree_.edge(e);
-      bool in_goal = false;
-      for (int k = edge.first; k <= edge.last && !in_goal; ++k) {
-        const State& qk = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
-        in_goal = goal_.contains(state_x(qk), state_y(qk));
-      }
-      if (in_goal) keep_[e] = static_cast<std::uint8_t>(keep_[e] | kLeadsToGoal);
-      if ((keep_[e] & kLeadsToGoal) != 0 && e != root) {
-        keep_[edge.parent] = static_cast<std::uint8_t>(keep_[edge.parent] | kLeadsToGoal);
-      }
+      if (keep_[e] == 0 || e == root || (keep_[e] & kInGoal) == 0) continue;
+      const EdgeHandle parent = tree_.edge(e).parent;
+      keep_[parent] = static_cast<std::uint8_t>(keep_[parent] | kInGoal);
     }
     for (const EdgeHandle e : order_) {
       if (keep_[e] == 0 || e == root) continue;
-      if ((keep_[e] & kLeadsToGoal) == 0) {
+      if ((keep_[e] & kInGoal) == 0) {
         keep_[e] = 0;
         ++retain_stats_.pruned_off_goal;
-      } else {
-        keep_[e] = static_cast<std::uint8_t>(keep_[e] & ~kLeadsToGoal);
       }
     }
-    keep_[root] = 1;
   }
+  for (const EdgeHandle e : order_) keep_[e] = static_cast<std::uint8_t>(keep_[e] & ~kInGoal);
+  keep_[root] = 1;
+  make_room(root);
+
   // Repair the links of what stays: drop released children from the child lists.
   for (const EdgeHandle e : order_) {
     if (keep_[e] == 0) continue;
@@ -375,13 +422,60 @@ void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift) noexcept 
 }
 
 template <VehicleModel V>
+void Planner<V>::make_room(EdgeHandle root) noexcept {
+  // Memory is fixed and a replanning tree only loses what falls behind the root, so a long run
+  // would fill the pools and stop growing. Past 60% of the edge pool, the subtrees whose best
+  // estimated arrival (rho + time at a quarter of top speed) is worst are released until about
+  // 40% remain. A subtree's best is never better than its parent's, so what stays is a tree.
+  std::uint32_t kept = 0;
+  for (const EdgeHandle e : order_) kept += keep_[e] != 0 ? 1U : 0U;
+  const auto capacity = static_cast<double>(tree_.edge_capacity());
+  if (kept <= static_cast<std::uint32_t>(0.6 * capacity)) return;
+  const auto target = static_cast<std::uint32_t>(0.4 * capacity);
+  double low = std::numeric_limits<double>::infinity();
+  double high = -std::numeric_limits<double>::infinity();
+  for (auto it = order_.end(); it != order_.begin();) {
+    const EdgeHandle e = *--it;
+    if (keep_[e] == 0) continue;
+    const Edge& edge = tree_.edge(e);
+    const double own = edge.rho_m + cost_speed_ * step_time(tree_.end_step(e));
+    subtree_cost_[e] = std::min(subtree_cost_[e], own);  // children came first: min over them
+    if (e != root)
+      subtree_cost_[edge.parent] = std::min(subtree_cost_[edge.parent], subtree_cost_[e]);
+    if (std::isfinite(subtree_cost_[e])) {
+      low = std::min(low, subtree_cost_[e]);
+      high = std::max(high, subtree_cost_[e]);
+    }
+  }
+  // The threshold that keeps about `target` edges, by bisection over the costs.
+  for (int i = 0; i < 40 && low < high; ++i) {
+    const double middle = 0.5 * (low + high);
+    std::uint32_t below = 0;
+    for (const EdgeHandle e : order_)
+      below += keep_[e] != 0 && subtree_cost_[e] <= middle ? 1U : 0U;
+    (below > target ? high : low) = middle;
+  }
+  for (const EdgeHandle e : order_) {
+    if (keep_[e] != 0 && e != root && !(subtree_cost_[e] <= high)) {
+      keep_[e] = 0;
+      ++retain_stats_.pruned_for_room;
+    }
+    subtree_cost_[e] = std::numeric_limits<double>::infinity();  // ready for the next cycle
+  }
+}
+
+template <VehicleModel V>
 void Planner<V>::rescore_tree() noexcept {
-  // Children of the root get priority 1, then Eq. 2 down the tree; rho against the new map and
-  // target; the heap is rebuilt; the best state and the solution are found again.
+  // Children of the root get priority 1, then Eq. 2 down the tree; the heap is rebuilt; the
+  // best state and the solution are found again (over the same sampled states as rho).
   heap_.clear();
   solution_ = TreeState{};
-  best_rho_ = std::numeric_limits<double>::infinity();
   const EdgeHandle root = tree_.root();
+  best_ = TreeState{root, tree_.edge(root).last};
+  best_rho_ = tree_.edge(root).rho_m;
+  best_cost_m_ = std::numeric_limits<double>::infinity();
+  EdgeHandle best_edge = root;
+  double best_edge_cost = best_cost_m_;
   for (const EdgeHandle e : order_) {
     if (keep_[e] == 0) continue;
     Edge& edge = tree_.edge(e);
@@ -391,25 +485,48 @@ void Planner<V>::rescore_tree() noexcept {
       edge.priority =
           edge.parent == root ? 1.0 : std::fma(2.0, tree_.edge(edge.parent).priority, 1.0);
     }
-    edge.rho_m = e == root ? rho_at(tree_.edge_state(e, edge.last)) : edge_rho(e);
     push_scored(e);
-    const int first = e == root ? edge.first : edge.first + 1;
-    for (int k = first; k <= edge.last; ++k) {
-      const State& qk = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
+    // Estimated from the edge's rho and the time at its end; refined on the chosen edge below.
+    const double cost = edge.rho_m + cost_speed_ * step_time(tree_.end_step(e));
+    if (tree_.end_step(e) >= horizon_step_ && cost < best_edge_cost) {
+      best_edge_cost = cost;
+      best_edge = e;
+    }
+  }
+  if (best_edge != root) {
+    const Edge& edge = tree_.edge(best_edge);
+    for (int k = edge.first + 1; k <= edge.last; ++k) {
       const auto index = static_cast<std::uint16_t>(k);
-      const double rho = rho_at(qk);
-      if (rho < best_rho_) {
+      const double rho = rho_at(tree_.state(edge.trajectory, index));
+      const std::uint32_t step = tree_.step_of(best_edge, index);
+      const double cost = rho + cost_speed_ * step_time(step);
+      if (step >= horizon_step_ && cost < best_cost_m_) {
+        best_cost_m_ = cost;
         best_rho_ = rho;
-        best_ = TreeState{e, index};
-      }
-      if (goal_.contains(state_x(qk), state_y(qk)) &&
-          (!solved() || tree_.step_of(e, index) < tree_.step_of(solution_.edge, solution_.index))) {
-        solution_ = TreeState{e, index};
+        best_ = TreeState{best_edge, index};
       }
     }
   }
-  if (best_rho_ == std::numeric_limits<double>::infinity())
-    best_ = TreeState{root, tree_.edge(root).last};
+  // The solution: the earliest goal state among the edges kept (all lead to F when one does).
+  for (const EdgeHandle e : order_) {
+    if (keep_[e] == 0 || e == root) continue;
+    const Edge& edge = tree_.edge(e);
+    for (int k = edge.first + 1; k <= edge.last; k += static_cast<int>(rescore_stride_)) {
+      const State& qk = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
+      if (!goal_.contains(state_x(qk), state_y(qk))) continue;
+      // Back to the first state of this edge in F, between the samples.
+      while (k > edge.first + 1) {
+        const State& earlier = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k - 1));
+        if (!goal_.contains(state_x(earlier), state_y(earlier))) break;
+        --k;
+      }
+      const auto index = static_cast<std::uint16_t>(k);
+      if (!solved() || tree_.step_of(e, index) < tree_.step_of(solution_.edge, solution_.index)) {
+        solution_ = TreeState{e, index};
+      }
+      break;
+    }
+  }
 }
 
 template <VehicleModel V>
@@ -455,8 +572,8 @@ bool Planner<V>::iterate() noexcept {
     if (head != selected) {
       Edge& h = tree_.edge(head);
       h.priority = new_priority;
-      h.rho_m = edge_rho(head);
-      tree_.edge(selected).rho_m = edge_rho(selected);
+      h.rho_m = sampled_rho(head, 1, nullptr);
+      tree_.edge(selected).rho_m = sampled_rho(selected, 1, nullptr);
       push_scored(head);
     }
     Edge& n = tree_.edge(added);
@@ -521,7 +638,12 @@ template <VehicleModel V>
 EdgeHandle Planner<V>::expand_from(TreeState from) noexcept {
   const TrajectoryHandle t = tree_.acquire_trajectory();
   GRIP_ASSERT(t != kNoHandle);  // solve() checked the room
-  const Control u = vehicle_.sample_control(rng_);
+  // Random controls (section 2.2), and, if configured, now and then the braking maneuver (the
+  // paper allows controls from a maneuver set; see braking_control_fraction).
+  const bool brake =
+      config_.braking_control_fraction > 0.0 && rng_.uniform01() < config_.braking_control_fraction;
+  const Control u = brake ? vehicle_.braking_control(tree_.edge_state(from.edge, from.index))
+                          : vehicle_.sample_control(rng_);
   const std::uint32_t steps = min_plan_steps_ + rng_.below(max_plan_steps_ - min_plan_steps_ + 1U);
   const State start = tree_.edge_state(from.edge, from.index);
   const std::uint32_t start_step = tree_.step_of(from.edge, from.index);
@@ -543,16 +665,18 @@ EdgeHandle Planner<V>::expand_from(TreeState from) noexcept {
   ++cycle_edges_;
   if (attach != from.edge) register_edge(attach);
   register_edge(added);
-  if (p.rho_m < best_rho_) {
-    best_rho_ = p.rho_m;
-    best_ = TreeState{added, p.rho_index};
+  if (p.best_cost_m < best_cost_m_) {
+    best_cost_m_ = p.best_cost_m;
+    best_rho_ = p.best_rho_m;
+    best_ = TreeState{added, p.best_index};
   }
   // A later path to the goal replaces the solution when it gets there sooner (replanning
   // keeps growing the tree to improve the committed trajectory).
-  if (p.reached_goal) {
+  if (p.goal_index != 0) {
     const TreeState current = resolve(solution_);
-    if (!solved() || tree_.step_of(added, p.last) < tree_.step_of(current.edge, current.index)) {
-      solution_ = TreeState{added, p.last};
+    if (!solved() ||
+        tree_.step_of(added, p.goal_index) < tree_.step_of(current.edge, current.index)) {
+      solution_ = TreeState{added, p.goal_index};
     }
   }
   return added;
@@ -581,28 +705,37 @@ typename Planner<V>::Propagated Planner<V>::propagate(TrajectoryHandle t, const 
     if (j % per_record != 0) continue;
     tree_.state(t, ++recorded) = q;
     const double rho = rho_at(q);
-    if (rho < out.rho_m) {
-      out.rho_m = rho;
-      out.rho_index = recorded;
+    out.rho_m = std::min(out.rho_m, rho);
+    // Plans are chosen among states at least T from the root (they must cover the next cycle).
+    const double cost = rho + cost_speed_ * step_time(from_step + j);
+    if (from_step + j >= horizon_step_ && cost < out.best_cost_m) {
+      out.best_cost_m = cost;
+      out.best_rho_m = rho;
+      out.best_index = recorded;
     }
-    if (goal_.contains(state_x(q), state_y(q))) {
-      out.reached_goal = true;
-      break;
+    if (out.goal_index == 0 && goal_.contains(state_x(q), state_y(q))) {
+      out.goal_index = recorded;
+      // Standalone runs end at the goal; replanning goes on (the vehicle may be inside F).
+      if (config_.stop_at_goal) break;
     }
   }
   if (config_.safety == SafetyCheck::kAllLeaves) {
     // The Fig. 7 variant: the new leaf must be safe; walk back until a safe state is found.
-    while (recorded > 0 && !contingency_safe(tree_.state(t, recorded))) {
-      --recorded;
-      out.reached_goal = false;
-    }
-    if (out.rho_index > recorded) {
+    while (recorded > 0 && !contingency_safe(tree_.state(t, recorded))) --recorded;
+    if (out.goal_index > recorded) out.goal_index = 0;
+    if (out.best_index > recorded) {
       out.rho_m = std::numeric_limits<double>::infinity();
+      out.best_cost_m = std::numeric_limits<double>::infinity();
+      out.best_index = 0;
       for (std::uint16_t k = 1; k <= recorded; ++k) {
         const double rho = rho_at(tree_.state(t, k));
-        if (rho < out.rho_m) {
-          out.rho_m = rho;
-          out.rho_index = k;
+        out.rho_m = std::min(out.rho_m, rho);
+        const std::uint32_t step = from_step + k * per_record;
+        const double cost = rho + cost_speed_ * step_time(step);
+        if (step >= horizon_step_ && cost < out.best_cost_m) {
+          out.best_cost_m = cost;
+          out.best_rho_m = rho;
+          out.best_index = k;
         }
       }
     }
@@ -625,13 +758,16 @@ bool Planner<V>::contingency_safe(const State& q) noexcept {
 }
 
 template <VehicleModel V>
-double Planner<V>::edge_rho(EdgeHandle e) const noexcept {
-  // Eq. 1 over the recorded states of the edge (its first state belongs to its parent).
+double Planner<V>::sampled_rho(EdgeHandle e, std::uint32_t stride, bool* in_goal) const noexcept {
+  // Eq. 1 over the states of the edge taken every `stride` records, and always its last one
+  // (its first state belongs to its parent); optionally whether one of them lies in F.
   const Edge& edge = tree_.edge(e);
   double rho = std::numeric_limits<double>::infinity();
   const int first = edge.parent == kNoHandle ? edge.first : edge.first + 1;
-  for (int k = first; k <= edge.last; ++k) {
-    rho = std::min(rho, rho_at(tree_.state(edge.trajectory, static_cast<std::uint32_t>(k))));
+  for (int k = edge.last; k >= first; k -= static_cast<int>(stride)) {
+    const State& q = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
+    rho = std::min(rho, rho_at(q));
+    if (in_goal != nullptr && !*in_goal) *in_goal = goal_.contains(state_x(q), state_y(q));
   }
   return rho;
 }
@@ -681,6 +817,14 @@ TreeState Planner<V>::best_state() const noexcept {
 }
 
 template <VehicleModel V>
+bool Planner<V>::contains(TreeState s) const noexcept {
+  if (s.edge == kNoHandle || !tree_.contains(s.edge) || s.index > tree_.edge(s.edge).last) {
+    return false;
+  }
+  return resolve(s).edge != kNoHandle;
+}
+
+template <VehicleModel V>
 TreeState Planner<V>::state_at_step(TreeState s, std::uint32_t step) const noexcept {
   s = resolve(s);
   if (s.edge == kNoHandle || step > tree_.step_of(s.edge, s.index)) return TreeState{};
@@ -690,6 +834,27 @@ TreeState Planner<V>::state_at_step(TreeState s, std::uint32_t step) const noexc
     const std::uint32_t offset = (step - edge.start_step) / config_.steps_per_record;
     if ((step - edge.start_step) % config_.steps_per_record != 0) return TreeState{};
     return resolve(TreeState{e, static_cast<std::uint16_t>(edge.first + offset)});
+  }
+  return TreeState{};
+}
+
+template <VehicleModel V>
+TreeState Planner<V>::committable_state(TreeState target, std::uint32_t min_step) noexcept {
+  TreeState s = resolve(target);
+  while (s.edge != kNoHandle) {
+    const Edge& edge = tree_.edge(s.edge);
+    if (tree_.step_of(s.edge, s.index) < min_step) return TreeState{};
+    if (config_.safety == SafetyCheck::kNone ||
+        contingency_safe(tree_.edge_state(s.edge, s.index))) {
+      return s;
+    }
+    if (s.index > edge.first + (edge.parent == kNoHandle ? 0 : 1)) {
+      --s.index;
+    } else if (edge.parent != kNoHandle) {
+      s = TreeState{edge.parent, tree_.edge(edge.parent).last};
+    } else {
+      return TreeState{};
+    }
   }
   return TreeState{};
 }

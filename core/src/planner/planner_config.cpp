@@ -81,6 +81,11 @@ Status PlannerConfig::validate() const {
                             std::to_string(rho_clearance_m) + ")");
   }
   if (auto s = positive("rho_floor_m", rho_floor_m); !s) return s;
+  if (!std::isfinite(braking_control_fraction) || braking_control_fraction < 0.0 ||
+      braking_control_fraction > 1.0) {
+    return invalid_argument("planner.braking_control_fraction must be in [0, 1] (got " +
+                            std::to_string(braking_control_fraction) + ")");
+  }
   if (!std::isfinite(rrt_goal_bias) || rrt_goal_bias < 0.0 || rrt_goal_bias > 1.0) {
     return invalid_argument("planner.rrt_goal_bias must be in [0, 1] (got " +
                             std::to_string(rrt_goal_bias) + ")");

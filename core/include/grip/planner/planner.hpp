@@ -89,6 +89,7 @@ struct RetainStats {
   std::uint32_t cut_by_map = 0;       // edges cut where their trajectory now collides
   std::uint32_t cut_unsafe = 0;       // edges cut where the state at T cannot brake safely
   std::uint32_t pruned_off_goal = 0;  // not leading to the goal once a path does
+  std::uint32_t pruned_for_room = 0;  // the worst subtrees, when the pool was filling up
   std::uint32_t released = 0;         // returned to the pool: above the new root, cut or pruned
   std::uint32_t edges_kept = 0;       // the tree carried over into the cycle
 };
@@ -122,7 +123,12 @@ class Planner {
   // keeps only paths that do; resets priorities (children of the root 1, then Eq. 2 down the
   // tree), recomputes rho against `goal` and rebuilds the heap. On an error the tree is as it
   // was. Needs steps_per_record == 1 so that every checked state is a recorded one.
-  RetainStatus retain(TreeState new_root, const GoalRegion& goal, double horizon_s) noexcept;
+  // Only cells that became non-free can invalidate an edge: when the caller knows where that
+  // happened since the last call (`newly_blocked`, e.g. the union of a cycle's map updates),
+  // only states within the chassis' reach of it are checked again; without it, every state is
+  // when the grid changed at all.
+  RetainStatus retain(TreeState new_root, const GoalRegion& goal, double horizon_s,
+                      const CellBox* newly_blocked = nullptr) noexcept;
   // Starts a fresh tree at q (when q is not on the tree), allocation-free.
   RetainStatus restart(const State& q, const GoalRegion& goal, double horizon_s) noexcept;
   const RetainStats& last_retain() const noexcept { return retain_stats_; }
@@ -132,17 +138,25 @@ class Planner {
   SolveResult solve(FunctionRef<bool()> should_stop) noexcept;
 
   bool solved() const noexcept { return solution_.edge != kNoHandle; }
+  // Whether s (possibly from before splits) is a state of the current tree.
+  bool contains(TreeState s) const noexcept;
   // The root: the state the tree grows from (the vehicle's state when the plan starts).
   TreeState root_state() const noexcept {
     return TreeState{tree_.root(), tree_.edge(tree_.root()).last};
   }
-  // The solution if solved, else the tree state closest to the goal by rho.
+  // The solution if solved, else the state with the best estimated arrival: rho plus the time
+  // from the root at a quarter of top speed (a plan should head to F and be short, section 1),
+  // so that a meandering path that ends slightly closer does not win.
   TreeState best_state() const noexcept;
   double best_rho_m() const noexcept { return best_rho_; }
 
   // The state reached `step` integration steps from the root on the path to s, or an empty
   // TreeState when the path is shorter. With steps_per_record == 1 every step is recorded.
   TreeState state_at_step(TreeState s, std::uint32_t step) const noexcept;
+  // Lazy safety for the plan about to be committed (section 2.3): the latest state on the path
+  // to `target`, at `min_step` or later, whose braking contingency is collision-free (any such
+  // state with SafetyCheck::kNone), or an empty TreeState when there is none.
+  TreeState committable_state(TreeState target, std::uint32_t min_step) noexcept;
   // Writes the plan from the root to s into `out`; false if it does not fit.
   bool extract_plan(TreeState s, VectorView<PlanStep>& out) const noexcept;
   // Calls visit(state) for every recorded state from the root to s, in order (allocates).
@@ -168,10 +182,12 @@ class Planner {
 
  private:
   struct Propagated {
-    std::uint16_t last = 0;  // recorded states kept: [0, last]; 0 means nothing usable
-    bool reached_goal = false;
-    double rho_m = std::numeric_limits<double>::infinity();
-    std::uint16_t rho_index = 0;
+    std::uint16_t last = 0;        // recorded states kept: [0, last]; 0 means nothing usable
+    std::uint16_t goal_index = 0;  // first recorded state in the goal region, 0 if none
+    double rho_m = std::numeric_limits<double>::infinity();  // Eq. 1 over the kept states
+    double best_cost_m = std::numeric_limits<double>::infinity();
+    double best_rho_m = std::numeric_limits<double>::infinity();
+    std::uint16_t best_index = 0;
   };
 
   Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerConfig& config,
@@ -182,8 +198,10 @@ class Planner {
   RetainStatus set_goal(const GoalRegion& goal) noexcept;
   void set_horizon(double horizon_s) noexcept;
   void reset_tree(const State& q) noexcept;
-  void prune_and_order(EdgeHandle root, std::uint32_t shift) noexcept;
+  void prune_and_order(EdgeHandle root, std::uint32_t shift, bool map_changed,
+                       const CellBox* newly_blocked) noexcept;
   void rescore_tree() noexcept;
+  void make_room(EdgeHandle root) noexcept;
   TreeState select() noexcept;
   TreeState select_rrt() noexcept;
   TreeState random_state_along(EdgeHandle e) noexcept;
@@ -193,11 +211,14 @@ class Planner {
                        const Control& u, std::uint32_t steps) noexcept;
   bool contingency_safe(const State& q) noexcept;
   bool is_free(const State& q) noexcept;
-  double edge_rho(EdgeHandle e) const noexcept;
+  double sampled_rho(EdgeHandle e, std::uint32_t stride, bool* in_goal) const noexcept;
   double score(const Edge& e) const noexcept;
   // Makes a new edge selectable by the baseline strategies.
   void register_edge(EdgeHandle e) noexcept;
   void push_scored(EdgeHandle e) noexcept;
+  double step_time(std::uint32_t step) const noexcept {
+    return static_cast<double>(step) * config_.integration_step_s;
+  }
   double rho_at(const State& q) const noexcept {
     return rho_field_.distance_m(state_x(q), state_y(q));
   }
@@ -214,19 +235,24 @@ class Planner {
   BoundedVector<TreeState> cell_state_;           // RRT: a tree state in each grid cell
   std::optional<NearestSourceField> tree_cells_;  // RRT: nearest tree cell under rho_A*
   BoundedVector<std::uint32_t> goal_cells_;
-  BoundedVector<EdgeHandle> order_;   // retainment: the kept tree in pre-order
-  BoundedVector<EdgeHandle> stack_;   // retainment: depth-first walk
-  BoundedVector<std::uint8_t> keep_;  // retainment: per edge handle, see prune_and_order
+  BoundedVector<EdgeHandle> order_;     // retainment: the kept tree in pre-order
+  BoundedVector<EdgeHandle> stack_;     // retainment: depth-first walk
+  BoundedVector<std::uint8_t> keep_;    // retainment: per edge handle, see prune_and_order
+  BoundedVector<double> subtree_cost_;  // retainment: best estimated arrival below an edge
   Random rng_;
   GoalRegion goal_;
   PlannerStats stats_;
   RetainStats retain_stats_;
-  std::uint64_t cycle_edges_ = 0;  // i of Eq. 2: edges propagated before, this cycle
+  std::uint64_t cycle_edges_ = 0;         // i of Eq. 2: edges propagated before, this cycle
+  std::uint64_t validated_revision_ = 0;  // the grid revision the tree was last checked against
   TreeState solution_;
   TreeState best_;
   double best_rho_ = std::numeric_limits<double>::infinity();
+  double best_cost_m_ = std::numeric_limits<double>::infinity();  // rho + top speed x time
   double log_a_;
   std::uint32_t horizon_step_;
+  double cost_speed_;  // [m/s] converts time from the root into metres for the arrival estimate
+  std::uint32_t rescore_stride_;
   std::uint32_t min_edge_records_;
   std::uint32_t min_plan_steps_;
   std::uint32_t max_plan_steps_;

@@ -63,6 +63,10 @@ struct PlannerConfig {
   // otherwise outweigh hundreds of thousands of priority steps, and the search would keep
   // expanding states that pass the goal region at a speed that cannot turn into it.
   double rho_floor_m = 4.0;
+  // The fraction of propagations that apply the braking maneuver instead of a random control.
+  // Replanning needs it (near an inevitable collision only braking keeps the state at T safe,
+  // and a uniform sample almost never draws it); standalone search does not.
+  double braking_control_fraction = 0.0;
   // RRT-EXTEND-BIAS: the fraction of samples that are the goal.
   double rrt_goal_bias = 0.2;
 

@@ -67,9 +67,10 @@ class Tree {
     return root_;
   }
 
-  // Room for one more propagation: a trajectory and two edge records.
+  // Room for one more propagation: a trajectory and two edge records, keeping one record in
+  // reserve so that re-rooting (tree retainment) can always split an edge.
   bool has_room_for_propagation() const noexcept {
-    return edges_.used() + 2 <= edges_.capacity() &&
+    return edges_.used() + 3 <= edges_.capacity() &&
            trajectories_.used() + 1 <= trajectories_.capacity();
   }
 

@@ -20,6 +20,26 @@ namespace grip {
 
 enum class Cell : std::uint8_t { kFree = 0, kObstacle = 1, kUnknown = 2 };
 
+// An inclusive rectangle of cells, e.g. where a map update made cells non-free.
+struct CellBox {
+  int x0 = 0;
+  int y0 = 0;
+  int x1 = -1;
+  int y1 = -1;
+  bool empty() const noexcept { return x1 < x0 || y1 < y0; }
+  void add(const CellBox& other) noexcept {
+    if (other.empty()) return;
+    if (empty()) {
+      *this = other;
+      return;
+    }
+    x0 = x0 < other.x0 ? x0 : other.x0;
+    y0 = y0 < other.y0 ? y0 : other.y0;
+    x1 = x1 > other.x1 ? x1 : other.x1;
+    y1 = y1 > other.y1 ? y1 : other.y1;
+  }
+};
+
 class OccupancyGrid {
  public:
   // Limits that keep every index and every distance (world/distance_field.hpp) in 32 bits.

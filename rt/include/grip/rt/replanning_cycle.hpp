@@ -1,0 +1,101 @@
+#pragma once
+// One planning cycle of the paper's Fig. 2, clock-agnostic so that tests drive it with a fake
+// clock. During cycle (t[i-1] : t[i]) the planner plans from q[i], the state the vehicle will
+// be in at t[i] on the plan it is executing, for execution during (t[i] : t[i+1]):
+//   1. predict q[i]: the state T along the committed plan (or at the end of its braking
+//      contingency when there is no plan), and retain the tree below it (Algorithm 1);
+//   2. grow the tree (anytime) until the deadline minus a safety margin;
+//   3. commit the best path whose duration is at least T and whose end state can brake safely
+//      (lazy evaluation); if there is none, the previous plan continues: it is safe for T and
+//      ends in a collision-free contingency by construction.
+// Allocation-free after create(); never throws.
+
+#include <cstdint>
+#include <optional>
+
+#include "grip/common/function_ref.hpp"
+#include "grip/memory/fixed_vector.hpp"
+#include "grip/planner/planner.hpp"
+
+namespace grip::rt {
+
+struct CycleConfig {
+  double cycle_s = 0.05;  // T: the duration of every cycle, a whole number of integration steps
+  // The planner stops growing this long before the deadline: room for committing the plan and
+  // for the stalls of a shared machine (several milliseconds on the VMs measured here).
+  std::int64_t safety_margin_ns = 5'000'000;
+  std::uint32_t max_plan_pieces = 1024;
+};
+
+// What a cycle did.
+struct CycleOutcome {
+  RetainStatus retain_status = RetainStatus::kOk;
+  bool restarted = false;       // the tree was rebuilt from the predicted state
+  bool committed = false;       // a new plan was committed
+  bool kept_previous = false;   // nothing better: the previous plan continues
+  bool plan_available = false;  // a plan covers the next cycle (else the contingency runs)
+  bool solved = false;          // the committed plan reaches the goal
+  bool pool_exhausted = false;
+  std::uint64_t edges_added = 0;
+  std::uint32_t tree_edges = 0;      // after the cycle
+  std::uint32_t edges_retained = 0;  // carried over from the previous cycle
+  std::uint32_t trajectories_used = 0;
+  double plan_duration_s = 0.0;  // of the committed plan, from the new root
+  std::int64_t retain_ns = 0;    // re-rooting, pruning and rescoring (or the restart)
+  std::int64_t commit_ns = 0;    // choosing and extracting the plan after growth
+};
+
+template <VehicleModel V>
+class ReplanningCycle {
+ public:
+  using State = typename V::State;
+
+  // The planner needs steps_per_record == 1 and T a whole number of integration steps.
+  static Result<ReplanningCycle> create(const V& vehicle, const OccupancyGrid& grid,
+                                        PlannerConfig planner_config, const CycleConfig& config);
+
+  // Start-up: the vehicle at rest at q0 (or moving: any valid state) and the first target.
+  Status start(const State& q0, const GoalRegion& goal);
+  // The target of the next cycles (a frontier, a goal).
+  void set_goal(const GoalRegion& goal) noexcept { goal_ = goal; }
+  const GoalRegion& goal() const noexcept { return goal_; }
+
+  // Where cells became non-free since the last cycle (map updates): the next retainment checks
+  // only states within the chassis' reach of it. Without any note, a changed grid is checked
+  // everywhere.
+  void note_newly_blocked(const CellBox& box) noexcept {
+    newly_blocked_.add(box);
+    blocked_noted_ = true;
+  }
+
+  // Runs one cycle, growing the tree until now_ns() >= deadline_ns - safety margin.
+  CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns) noexcept;
+
+  // The committed plan, from the root of the current cycle (the state at the start of the
+  // next cycle's execution); empty when the vehicle is to brake.
+  const VectorView<PlanStep>& plan() const noexcept { return plan_; }
+  // The state the plan starts from, and the one it reaches after T (the next root).
+  const State& plan_start() const noexcept;
+  const Planner<V>& planner() const noexcept { return planner_; }
+  std::uint32_t cycle_steps() const noexcept { return cycle_steps_; }
+
+ private:
+  ReplanningCycle(Planner<V> planner, const CycleConfig& config, std::uint32_t cycle_steps);
+  State predicted_state_without_plan() const noexcept;
+  void commit(TreeState s) noexcept;
+
+  Planner<V> planner_;
+  CycleConfig config_;
+  std::uint32_t cycle_steps_;
+  GoalRegion goal_;
+  TreeState committed_;  // end of the committed plan in the tree; empty: braking
+  CellBox newly_blocked_;
+  bool blocked_noted_ = false;
+  BoundedVector<PlanStep> plan_;
+};
+
+extern template class ReplanningCycle<DdVelocity>;
+extern template class ReplanningCycle<DdAcceleration>;
+extern template class ReplanningCycle<Car>;
+
+}  // namespace grip::rt

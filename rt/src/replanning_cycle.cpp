@@ -1,0 +1,166 @@
+#include "grip/rt/replanning_cycle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace grip::rt {
+
+template <VehicleModel V>
+Result<ReplanningCycle<V>> ReplanningCycle<V>::create(const V& vehicle, const OccupancyGrid& grid,
+                                                      PlannerConfig planner_config,
+                                                      const CycleConfig& config) {
+  if (!std::isfinite(config.cycle_s) || config.cycle_s <= 0.0) {
+    return invalid_argument("cycle: T (cycle_s) must be > 0 (got " +
+                            std::to_string(config.cycle_s) + ")");
+  }
+  const double steps = config.cycle_s / planner_config.integration_step_s;
+  if (std::abs(steps - std::round(steps)) > 1e-6 || std::round(steps) < 1.0) {
+    return invalid_argument("cycle: T (" + std::to_string(config.cycle_s) +
+                            " s) must be a whole number of integration steps (" +
+                            std::to_string(planner_config.integration_step_s) + " s)");
+  }
+  if (config.safety_margin_ns < 0 || config.max_plan_pieces == 0) {
+    return invalid_argument("cycle: safety margin must be >= 0 and max_plan_pieces > 0");
+  }
+  planner_config.steps_per_record = 1;  // every checked state is a recorded one (retainment)
+  planner_config.stop_at_goal = false;  // once solved, cycles improve the solution
+  planner_config.safety_horizon_s = config.cycle_s;
+  planner_config.selection = Selection::kGrip;
+  // Near an inevitable collision only braking keeps the state at T safe.
+  if (planner_config.braking_control_fraction == 0.0)
+    planner_config.braking_control_fraction = 0.125;
+  auto planner = Planner<V>::create(vehicle, grid, planner_config);
+  if (!planner) return planner.error();
+  return ReplanningCycle(std::move(planner).value(), config,
+                         static_cast<std::uint32_t>(std::llround(steps)));
+}
+
+template <VehicleModel V>
+ReplanningCycle<V>::ReplanningCycle(Planner<V> planner, const CycleConfig& config,
+                                    std::uint32_t cycle_steps)
+    : planner_(std::move(planner)),
+      config_(config),
+      cycle_steps_(cycle_steps),
+      plan_(config.max_plan_pieces) {}
+
+template <VehicleModel V>
+Status ReplanningCycle<V>::start(const State& q0, const GoalRegion& goal) {
+  if (auto s = planner_.set_problem(q0, goal); !s) return s;
+  goal_ = goal;
+  committed_ = TreeState{};
+  plan_.clear();
+  return Ok{};
+}
+
+template <VehicleModel V>
+const typename ReplanningCycle<V>::State& ReplanningCycle<V>::plan_start() const noexcept {
+  const TreeState root = planner_.root_state();
+  return planner_.tree().edge_state(root.edge, root.index);
+}
+
+template <VehicleModel V>
+typename ReplanningCycle<V>::State ReplanningCycle<V>::predicted_state_without_plan()
+    const noexcept {
+  // The committed plan (if any) is shorter than T: the vehicle drives it to its end and then
+  // brakes for the rest of the cycle, as the controller does (its contingency).
+  std::uint32_t steps_left = cycle_steps_;
+  State q = plan_start();
+  if (planner_.contains(committed_)) {
+    const TreeState end = committed_;
+    const auto& tree = planner_.tree();
+    const std::uint32_t planned = tree.step_of(end.edge, end.index);
+    q = tree.edge_state(end.edge, end.index);
+    steps_left -= std::min(steps_left, planned);
+  }
+  const V& vehicle = planner_.vehicle();
+  for (std::uint32_t i = 0; i < steps_left; ++i) {
+    q = vehicle.brake_step(q, planner_.config().integration_step_s);
+  }
+  return q;
+}
+
+template <VehicleModel V>
+CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
+                                     std::int64_t deadline_ns) noexcept {
+  CycleOutcome out;
+  const std::int64_t cycle_start = now_ns();
+  // 1. The new root: T along the committed plan. A plan always covers T when it exists.
+  const TreeState next_root =
+      committed_.edge != kNoHandle ? planner_.state_at_step(committed_, cycle_steps_) : TreeState{};
+  if (next_root.edge != kNoHandle) {
+    out.retain_status = planner_.retain(next_root, goal_, config_.cycle_s,
+                                        blocked_noted_ ? &newly_blocked_ : nullptr);
+    out.edges_retained = planner_.last_retain().edges_kept;
+  } else {
+    out.retain_status = RetainStatus::kRootNotInTree;
+  }
+  if (out.retain_status != RetainStatus::kOk) {
+    const State q = next_root.edge != kNoHandle
+                        ? planner_.tree().edge_state(next_root.edge, next_root.index)
+                        : predicted_state_without_plan();
+    out.restarted = true;
+    out.retain_status = planner_.restart(q, goal_, config_.cycle_s);
+    committed_ = TreeState{};
+  } else if (!planner_.contains(committed_)) {
+    committed_ = TreeState{};  // the new map or T cut the rest of the previous plan
+  }
+
+  newly_blocked_ = CellBox{};
+  blocked_noted_ = false;
+  out.retain_ns = now_ns() - cycle_start;
+
+  // 2. Anytime growth, stopping itself before the deadline.
+  const std::uint64_t edges_before = planner_.stats().edges_added;
+  const std::int64_t stop_at = deadline_ns - config_.safety_margin_ns;
+  if (out.retain_status == RetainStatus::kOk) {
+    (void)planner_.solve([&] { return now_ns() >= stop_at; });
+  }
+  out.edges_added = planner_.stats().edges_added - edges_before;
+  out.pool_exhausted = planner_.stats().pool_exhausted;
+
+  const std::int64_t commit_start = now_ns();
+  // 3. Commit: the solution if there is one, else the state closest to the target; its path
+  // must cover the next cycle and end where the vehicle can brake safely.
+  const TreeState candidate = out.retain_status == RetainStatus::kOk
+                                  ? planner_.committable_state(planner_.best_state(), cycle_steps_)
+                                  : TreeState{};
+  if (candidate.edge != kNoHandle) {
+    commit(candidate);
+    out.committed = true;
+  } else if (committed_.edge != kNoHandle) {
+    out.kept_previous = true;  // still in the tree, still safe for T
+    commit(committed_);
+  } else {
+    committed_ = TreeState{};
+    plan_.clear();
+  }
+  out.commit_ns = now_ns() - commit_start;
+  out.plan_available = committed_.edge != kNoHandle;
+  out.solved = planner_.solved() && out.plan_available;
+  const auto& tree = planner_.tree();
+  out.tree_edges = tree.edge_count();
+  out.trajectories_used = tree.trajectory_count();
+  if (out.plan_available) {
+    out.plan_duration_s =
+        tree.step_of(committed_.edge, committed_.index) * planner_.config().integration_step_s;
+  }
+  return out;
+}
+
+template <VehicleModel V>
+void ReplanningCycle<V>::commit(TreeState s) noexcept {
+  committed_ = s;
+  if (!planner_.extract_plan(s, plan_)) {
+    // More pieces than max_plan_pieces: no plan is committed and the vehicle brakes. The
+    // configuration decides this at start-up; a plan of 1 s pieces over minutes never gets here.
+    committed_ = TreeState{};
+    plan_.clear();
+  }
+}
+
+template class ReplanningCycle<DdVelocity>;
+template class ReplanningCycle<DdAcceleration>;
+template class ReplanningCycle<Car>;
+
+}  // namespace grip::rt

@@ -1,0 +1,189 @@
+// The cycle scheme of Fig. 2 with a fake clock: the planner stops itself before the deadline,
+// each cycle starts where the previous plan leads after T, committed plans cover the next
+// cycle and end in a collision-free contingency, and nothing better keeps the previous plan.
+
+#include "grip/rt/replanning_cycle.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "grip/planner/contingency.hpp"
+#include "grip/platform/alloc_counter.hpp"
+#include "grip/scenes/scenes.hpp"
+
+namespace grip::rt {
+namespace {
+
+// A clock that advances a fixed step each time it is read: time passes as the planner works.
+struct FakeClock {
+  std::int64_t now = 0;
+  std::int64_t step_ns = 20'000;
+  std::int64_t read() { return now += step_ns; }
+};
+
+class ReplanningCycleTest : public ::testing::Test {
+ protected:
+  Scene scene = make_scene(SceneId::kRooms).value();
+  Car car = Car::create({}).value();
+  CycleConfig config;
+  std::optional<ReplanningCycle<Car>> cycle;
+  FakeClock clock;
+  static constexpr std::int64_t kBudgetNs = 25'000'000;
+
+  void SetUp() override {
+    config.cycle_s = 0.1;
+    config.safety_margin_ns = 2'000'000;
+    PlannerConfig planner;
+    planner.max_edges = 20'000;
+    planner.max_trajectories = 10'000;
+    cycle.emplace(ReplanningCycle<Car>::create(car, scene.grid, planner, config).value());
+    ASSERT_TRUE(cycle->start(car.rest_state(scene.start_x_m, scene.start_y_m, 0.0),
+                             GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+  }
+  CycleOutcome run_cycle() {
+    const std::int64_t release = clock.now;
+    return cycle->run([this] { return clock.read(); }, release + kBudgetNs);
+  }
+  // Replays the committed plan from its start for `seconds`, checking every step.
+  Car::State replay(double seconds, bool& collided) const {
+    Car::State q = cycle->plan_start();
+    double left = seconds;
+    const double dt = cycle->planner().config().integration_step_s;
+    for (const PlanStep& step : cycle->plan()) {
+      const Car::Control u(step.control[0], step.control[1]);
+      for (long i = 0; i < std::lround(step.duration_s / dt) && left > 1e-9; ++i, left -= dt) {
+        q = car.step(q, u, dt);
+        collided = collided || !cycle->planner().checker().is_free(q[0], q[1], q[2]);
+      }
+    }
+    return q;
+  }
+};
+
+TEST_F(ReplanningCycleTest, ThePlannerStopsItselfBeforeTheDeadlineWithItsMargin) {
+  for (int i = 0; i < 5; ++i) {
+    const std::int64_t release = clock.now;
+    const CycleOutcome out = cycle->run([this] { return clock.read(); }, release + kBudgetNs);
+    EXPECT_LE(clock.now, release + kBudgetNs - config.safety_margin_ns + 2 * clock.step_ns);
+    EXPECT_GT(out.edges_added, 0U);
+  }
+}
+
+TEST_F(ReplanningCycleTest, EachCycleStartsWhereThePreviousPlanLeadsAfterT) {
+  int compared = 0;
+  for (int i = 0; i < 30; ++i) {
+    const CycleOutcome out = run_cycle();
+    ASSERT_EQ(out.retain_status, RetainStatus::kOk);
+    if (!out.plan_available) continue;  // the vehicle brakes: covered by another test
+    ++compared;
+    EXPECT_GE(out.plan_duration_s, config.cycle_s - 1e-9);
+    bool collided = false;
+    const Car::State predicted = replay(config.cycle_s, collided);
+    EXPECT_FALSE(collided);
+    (void)run_cycle();
+    // Recorded states are the integrator's own values: the new root is exactly the prediction.
+    EXPECT_TRUE(cycle->plan_start().isApprox(predicted, 1e-12)) << "cycle " << i;
+  }
+  EXPECT_GT(compared, 20);
+}
+
+TEST_F(ReplanningCycleTest, CommittedPlansEndInACollisionFreeContingency) {
+  int plans = 0;
+  for (int i = 0; i < 40; ++i) {
+    const CycleOutcome out = run_cycle();
+    if (!out.plan_available) continue;  // the vehicle brakes: covered by another test
+    ++plans;
+    bool collided = false;
+    const Car::State end = replay(1e9, collided);
+    EXPECT_FALSE(collided);
+    std::uint64_t checks = 0;
+    EXPECT_TRUE(contingency_is_collision_free(car, cycle->planner().checker(), end,
+                                              cycle->planner().config().integration_step_s,
+                                              checks));
+  }
+  EXPECT_GT(plans, 30);
+}
+
+TEST_F(ReplanningCycleTest, WithNoTimeToPlanThePreviousPlanContinues) {
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(run_cycle().committed);
+  const double before = cycle->plan().empty() ? 0.0 : cycle->plan()[0].duration_s;
+  (void)before;
+  // A deadline already passed: no growth at all.
+  const CycleOutcome out = cycle->run([this] { return clock.read(); }, clock.now);
+  EXPECT_EQ(out.edges_added, 0U);
+  EXPECT_TRUE(out.plan_available);
+  EXPECT_TRUE(out.kept_previous || out.committed);
+  EXPECT_FALSE(out.restarted);
+}
+
+TEST_F(ReplanningCycleTest, EveryCycleEitherCommitsACollisionFreePlanOrBrakesSafely) {
+  int braking_cycles = 0;
+  for (int cycles = 0; cycles < 300; ++cycles) {
+    const CycleOutcome out = run_cycle();
+    if (out.plan_available) {
+      bool collided = false;
+      (void)replay(1e9, collided);
+      ASSERT_FALSE(collided) << "cycle " << cycles;
+      continue;
+    }
+    // No plan covers the next cycle: the vehicle brakes, which must be collision-free.
+    ++braking_cycles;
+    std::uint64_t checks = 0;
+    ASSERT_TRUE(contingency_is_collision_free(car, cycle->planner().checker(), cycle->plan_start(),
+                                              cycle->planner().config().integration_step_s, checks))
+        << "cycle " << cycles;
+  }
+  EXPECT_LT(braking_cycles, 300 / 4);
+}
+
+TEST(ReplanningCycleArrival, AVelocityControlledRobotReachesTheGoalOfRooms) {
+  const Scene scene = make_scene(SceneId::kRooms).value();
+  const DdVelocity robot = DdVelocity::create({}).value();
+  CycleConfig config;
+  config.cycle_s = 0.1;
+  config.safety_margin_ns = 2'000'000;
+  PlannerConfig planner;
+  planner.max_edges = 20'000;
+  planner.max_trajectories = 10'000;
+  auto cycle = ReplanningCycle<DdVelocity>::create(robot, scene.grid, planner, config).value();
+  const GoalRegion goal{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m};
+  ASSERT_TRUE(cycle.start(robot.rest_state(scene.start_x_m, scene.start_y_m, 0.0), goal));
+  FakeClock clock;
+  int cycles = 0;
+  // A first solution is found within seconds and the vehicle follows it while later cycles
+  // shorten it (Algorithm 1 prunes what does not lead to F); random-control paths are slower
+  // than the 65 m route at top speed, so the bound is generous: 120 s.
+  for (; cycles < 1200; ++cycles) {
+    const auto& q = cycle.plan_start();
+    if (goal.contains(q[0], q[1])) break;
+    const std::int64_t release = clock.now;
+    const CycleOutcome out = cycle.run([&] { return clock.read(); }, release + 25'000'000);
+    ASSERT_NE(out.retain_status, RetainStatus::kRootInCollision) << "cycle " << cycles;
+  }
+  EXPECT_LT(cycles, 1200) << "did not arrive within 120 s (the route is about 65 m)";
+}
+
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+TEST_F(ReplanningCycleTest, CyclesAllocateNothing) {
+  ASSERT_TRUE(alloc_counter::interposed());
+  for (int i = 0; i < 5; ++i) (void)run_cycle();
+  alloc_counter::arm();
+  for (int i = 0; i < 200; ++i) (void)run_cycle();
+  alloc_counter::disarm();
+  EXPECT_EQ(alloc_counter::counts().allocations + alloc_counter::counts().deallocations, 0U);
+}
+#endif
+
+TEST(ReplanningCycleConfig, RefusesATThatIsNotAWholeNumberOfSteps) {
+  const Scene scene = make_scene(SceneId::kRooms).value();
+  const Car car = Car::create({}).value();
+  CycleConfig config;
+  config.cycle_s = 0.07;  // 1.4 integration steps of 0.05 s
+  auto cycle = ReplanningCycle<Car>::create(car, scene.grid, PlannerConfig{}, config);
+  ASSERT_FALSE(cycle);
+  EXPECT_NE(cycle.error().message.find("whole number of integration steps"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace grip::rt
