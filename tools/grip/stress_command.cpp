@@ -7,6 +7,7 @@
 #include <sys/utsname.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <deque>
@@ -47,6 +48,7 @@ struct StressOptions {
   std::uint64_t seed = 1;
   std::string report;
   double max_miss_rate = -1.0;
+  std::uint32_t max_edges = 0;  // default: from the budget
 };
 
 // A change of the map: a rectangle of cells set to one value (as a map update patch).
@@ -74,6 +76,9 @@ Status validate(const StressOptions& o) {
   }
   if (o.margin_ms >= 0.0 && o.margin_ms >= o.budget_ms) {
     return bad("--margin-ms must be below the budget (got " + std::to_string(o.margin_ms) + ")");
+  }
+  if (o.max_edges != 0 && o.max_edges < 100) {
+    return bad("--max-edges must be at least 100 (got " + std::to_string(o.max_edges) + ")");
   }
   if (o.max_miss_rate != -1.0 && (!(o.max_miss_rate >= 0.0) || o.max_miss_rate > 1.0)) {
     return bad("--max-miss-rate must be in [0, 1] (got " + std::to_string(o.max_miss_rate) + ")");
@@ -167,8 +172,13 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   PlannerConfig planner_config;
   planner_config.integration_step_s = period_s / std::ceil(period_s / 0.05 - 1e-9);
   planner_config.seed = o.seed;
-  planner_config.max_edges = 40'000;
-  planner_config.max_trajectories = 20'000;
+  // The pool bounds the tree, and retaining a tree costs time in proportion to its size (it is
+  // re-timed, re-checked and re-scored every cycle): 400 edges per millisecond of budget keeps
+  // a full tree's retainment near a quarter of the budget on the machines measured here.
+  planner_config.max_edges =
+      o.max_edges != 0 ? o.max_edges
+                       : static_cast<std::uint32_t>(std::clamp(400.0 * o.budget_ms, 2000.0, 2e5));
+  planner_config.max_trajectories = planner_config.max_edges / 2;
   rt::CycleConfig cycle_config;
   cycle_config.cycle_s = period_s;
   const double margin_ms = o.margin_ms >= 0.0 ? o.margin_ms : std::max(2.0, o.budget_ms / 5.0);
@@ -476,6 +486,8 @@ void register_stress_command(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "Seed of the planner and of the changing world")
       ->capture_default_str();
   cmd->add_option("--report", o->report, "Write the JSON report here");
+  cmd->add_option("--max-edges", o->max_edges,
+                  "Edge pool of the planner (default: 400 per ms of budget)");
   cmd->add_option("--max-miss-rate", o->max_miss_rate,
                   "Exit with status 3 when the miss rate exceeds this fraction");
   cmd->callback([o]() {
