@@ -114,10 +114,10 @@ CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
   const std::uint64_t edges_before = planner_.stats().edges_added;
   const std::int64_t stop_at = deadline_ns - config_.safety_margin_ns;
   if (out.retain_status == RetainStatus::kOk) {
-    (void)planner_.solve([&] { return now_ns() >= stop_at; });
+    const SolveResult grown = planner_.solve([&] { return now_ns() >= stop_at; });
+    out.pool_exhausted = grown.reason == StopReason::kPoolExhausted;  // this cycle's growth
   }
   out.edges_added = planner_.stats().edges_added - edges_before;
-  out.pool_exhausted = planner_.stats().pool_exhausted;
 
   const std::int64_t commit_start = now_ns();
   // 3. Commit: the solution if there is one, else the state closest to the target; its path

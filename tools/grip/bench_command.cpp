@@ -77,7 +77,7 @@ nlohmann::json run_edges_to_goal(const BenchOptions& o) {
       config.seed = run.seed;
       config = config_for_edge_cap(config, o.max_edges);
       const bool draw = !o.image_dir.empty() && run.seed == 1;
-      with_vehicle(vehicle_kind_from_name(run.robot).value(), [&](const auto& vehicle) {
+      with_default_vehicle(vehicle_kind_from_name(run.robot).value(), [&](const auto& vehicle) {
         auto r = run_standalone(vehicle, *scene, config, o.max_edges, 0.0, [&](const auto& p) {
           if (!draw) return;
           const std::string file =
@@ -165,7 +165,7 @@ nlohmann::json run_time_250_edges(const BenchOptions& o) {
         config.seed = seed;
         config.stop_at_goal = false;  // always a full 250-edge tree
         config = config_for_edge_cap(config, 250);
-        with_vehicle(kind, [&](const auto& vehicle) {
+        with_default_vehicle(kind, [&](const auto& vehicle) {
           auto r = run_standalone(vehicle, *scene, config, 250, 0.0, [](const auto&) {});
           if (r && r->edges_added == 250) times.push_back(r->solve_time_s);
         });
@@ -207,7 +207,7 @@ nlohmann::json run_safety_overhead(const BenchOptions& o) {
           config.safety = variant == 0 ? SafetyCheck::kAtHorizon : SafetyCheck::kAllLeaves;
           config.stop_at_goal = false;  // the same budget for both: tree size is the measure
           config = config_for_edge_cap(config, o.max_edges);
-          with_vehicle(kind, [&](const auto& vehicle) {
+          with_default_vehicle(kind, [&](const auto& vehicle) {
             auto r =
                 run_standalone(vehicle, *scene, config, o.max_edges, budget_s, [](const auto&) {});
             if (r) sums[variant] += static_cast<double>(r->edges_added);

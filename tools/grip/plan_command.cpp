@@ -49,7 +49,7 @@ int run_plan(const PlanOptions& o) {
   config.rho_clearance_m = o.rho_clearance_m;
   config.safety = o.all_leaves_safe ? SafetyCheck::kAllLeaves : SafetyCheck::kAtHorizon;
   config = config_for_edge_cap(config, o.max_edges);
-  return with_vehicle(*kind, [&](const auto& vehicle) {
+  return with_default_vehicle(*kind, [&](const auto& vehicle) {
     Status drawn = Ok{};
     auto outcome = run_standalone(
         vehicle, *scene, config, o.max_edges, o.time_limit_s, [&](const auto& planner) {

@@ -9,23 +9,10 @@
 
 #include "grip/planner/planner.hpp"
 #include "grip/scenes/scenes.hpp"
+#include "grip/vehicles/default_vehicle.hpp"
 #include "render.hpp"
 
 namespace grip::tools {
-
-// Calls f(vehicle) with the vehicle model of `kind` built from its default (paper) parameters.
-template <typename F>
-decltype(auto) with_vehicle(VehicleKind kind, F&& f) {
-  switch (kind) {
-    case VehicleKind::kDdVelocity:
-      return f(DdVelocity::create(DdVelocityParams{}).value());
-    case VehicleKind::kDdAcceleration:
-      return f(DdAcceleration::create(DdAccelerationParams{}).value());
-    case VehicleKind::kCar:
-      break;
-  }
-  return f(Car::create(CarParams{}).value());
-}
 
 struct StandaloneOutcome {
   bool solved = false;

@@ -462,7 +462,7 @@ int run_stress_command(const StressOptions& o) {
     std::cerr << "grip stress: " << load.error().message << "\n";
     return 2;
   }
-  return with_vehicle(*kind, [&](const auto& vehicle) {
+  return with_default_vehicle(*kind, [&](const auto& vehicle) {
     return run_stress(o, vehicle, std::move(scene).value(), *overruns, *load, *policy);
   });
 }

@@ -7,6 +7,7 @@
 
 #include "grip/planner/planner.hpp"
 #include "grip/scenes/scenes.hpp"
+#include "grip/vehicles/default_vehicle.hpp"
 #include "test_support.hpp"
 
 namespace grip {
@@ -32,17 +33,7 @@ class BuiltInSceneSolveTest : public ::testing::TestWithParam<std::tuple<SceneId
 };
 
 TEST_P(BuiltInSceneSolveTest, GripReachesTheGoalWithACollisionFreePlan) {
-  switch (std::get<1>(GetParam())) {
-    case VehicleKind::kDdVelocity:
-      solve(DdVelocity::create({}).value());
-      break;
-    case VehicleKind::kDdAcceleration:
-      solve(DdAcceleration::create({}).value());
-      break;
-    case VehicleKind::kCar:
-      solve(Car::create({}).value());
-      break;
-  }
+  with_default_vehicle(std::get<1>(GetParam()), [this](const auto& vehicle) { solve(vehicle); });
 }
 
 INSTANTIATE_TEST_SUITE_P(

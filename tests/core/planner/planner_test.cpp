@@ -1,4 +1,5 @@
 #include "grip/planner/planner.hpp"
+#include "grip/vehicles/default_vehicle.hpp"
 
 #include <gtest/gtest.h>
 
@@ -137,17 +138,8 @@ class EndToEndSolveTest : public ::testing::TestWithParam<SolveCase> {
 };
 
 TEST_P(EndToEndSolveTest, ReachesTheGoalAroundAWallWithACollisionFreePlan) {
-  switch (GetParam().vehicle) {
-    case VehicleKind::kDdVelocity:
-      solve_and_replay(DdVelocity::create({}).value());
-      break;
-    case VehicleKind::kDdAcceleration:
-      solve_and_replay(DdAcceleration::create({}).value());
-      break;
-    case VehicleKind::kCar:
-      solve_and_replay(Car::create({}).value());
-      break;
-  }
+  with_default_vehicle(GetParam().vehicle,
+                       [this](const auto& vehicle) { solve_and_replay(vehicle); });
 }
 
 std::vector<SolveCase> all_cases() {

@@ -35,7 +35,7 @@ struct CycleOutcome {
   bool kept_previous = false;   // nothing better: the previous plan continues
   bool plan_available = false;  // a plan covers the next cycle (else the contingency runs)
   bool solved = false;          // the committed plan reaches the goal
-  bool pool_exhausted = false;
+  bool pool_exhausted = false;  // growth stopped this cycle because the pools were full
   std::uint64_t edges_added = 0;
   std::uint32_t tree_edges = 0;      // after the cycle
   std::uint32_t edges_retained = 0;  // carried over from the previous cycle
