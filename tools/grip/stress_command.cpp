@@ -49,6 +49,7 @@ struct StressOptions {
   std::string report;
   double max_miss_rate = -1.0;
   std::uint32_t max_edges = 0;  // default: from the budget
+  bool static_world = false;    // no map or target changes: shows what retainment keeps
 };
 
 // A change of the map: a rectangle of cells set to one value (as a map update patch).
@@ -190,7 +191,10 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   }
   Environment environment(scene.grid, o.seed);
   const auto start = vehicle.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad);
-  if (auto s = cycle->start(start, environment.next_goal({scene.start_x_m, scene.start_y_m})); !s) {
+  const GoalRegion first_goal =
+      o.static_world ? GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}
+                     : environment.next_goal({scene.start_x_m, scene.start_y_m});
+  if (auto s = cycle->start(start, first_goal); !s) {
     std::cerr << "grip stress: " << s.error().message << "\n";
     return 2;
   }
@@ -234,7 +238,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
     VehiclePose vehicle_pose{scene.start_x_m, scene.start_y_m};
     std::int64_t next = platform::now_ns();
     std::int64_t next_goal = next + 3'000'000'000;
-    while (!environment_stop.load(std::memory_order_acquire)) {
+    while (!o.static_world && !environment_stop.load(std::memory_order_acquire)) {
       next += loop_config.period.count();
       platform::sleep_until_ns(next);
       (void)pose->read(vehicle_pose);
@@ -264,6 +268,11 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   std::uint64_t edges_added = 0, max_tree = 0, max_trajectories = 0, exhausted = 0, solved = 0;
   std::uint64_t retained_sum = 0;
   std::map<std::string, std::uint64_t> refused;  // cycles whose tree could not be kept or started
+  // Estimated arrival at the target (release of the plan + its duration) once a plan reaches
+  // it; on a static map retainment should never make it later.
+  double first_arrival_s = -1.0;
+  double last_arrival_s = -1.0;
+  std::uint64_t arrival_later = 0;
   const bool tty = isatty(STDERR_FILENO) == 1;
   std::int64_t next_print = platform::now_ns();
   rt::CycleRecord record;
@@ -300,6 +309,13 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
       }
       exhausted += record.outcome.pool_exhausted ? 1 : 0;
       solved += record.outcome.solved ? 1 : 0;
+      if (record.outcome.solved) {
+        const double arrival =
+            static_cast<double>(record.cycle + 1) * period_s + record.outcome.plan_duration_s;
+        if (first_arrival_s < 0.0) first_arrival_s = arrival;
+        if (last_arrival_s >= 0.0 && arrival > last_arrival_s + 1e-6) ++arrival_later;
+        last_arrival_s = arrival;
+      }
       edges_added += record.outcome.edges_added;
       retained_sum += record.outcome.edges_retained;
       max_tree = std::max<std::uint64_t>(max_tree, record.outcome.tree_edges);
@@ -371,7 +387,13 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
                        {"cycles_without_plan", no_plan},
                        {"restarts", restarts},
                        {"cycles_refused_by_status", refused},
-                       {"cycles_with_plan_to_target", solved}};
+                       {"cycles_with_plan_to_target", solved},
+                       {"first_arrival_s", first_arrival_s >= 0.0 ? nlohmann::json(first_arrival_s)
+                                                                  : nlohmann::json(nullptr)},
+                       {"last_arrival_s", last_arrival_s >= 0.0 ? nlohmann::json(last_arrival_s)
+                                                                : nlohmann::json(nullptr)},
+                       {"cycles_arrival_later", arrival_later}};
+  report["world"] = o.static_world ? "static" : "changing";
   report["config"] = {{"duration_s", o.duration_s},
                       {"period_ms", o.period_ms},
                       {"budget_ms", o.budget_ms},
@@ -412,6 +434,11 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
             << per(retained_sum, cycles) << " carried over, tree up to " << max_tree << " of "
             << planner_config.max_edges << ", " << no_plan << " cycles without a plan, "
             << kept_previous << " kept the previous plan\n";
+  if (first_arrival_s >= 0.0) {
+    std::cout << "  target reached by the plan: arrival estimated at " << first_arrival_s
+              << " s when first found, " << last_arrival_s << " s at the end, later than the "
+              << "cycle before in " << arrival_later << " cycles\n";
+  }
   for (const auto& [status, count] : refused) {
     std::cout << "  " << count << " cycles could not plan: " << status << "\n";
   }
@@ -488,6 +515,9 @@ void register_stress_command(CLI::App& app) {
   cmd->add_option("--report", o->report, "Write the JSON report here");
   cmd->add_option("--max-edges", o->max_edges,
                   "Edge pool of the planner (default: 400 per ms of budget)");
+  cmd->add_flag(
+      "--static", o->static_world,
+      "Keep the map and the target (the scene's goal) fixed: shows what retainment keeps");
   cmd->add_option("--max-miss-rate", o->max_miss_rate,
                   "Exit with status 3 when the miss rate exceeds this fraction");
   cmd->callback([o]() {
