@@ -1,0 +1,71 @@
+#pragma once
+// A typed DDS writer for an idlc-generated C type T (descriptor e.g. &grip_msg_Plan_desc).
+// Owns its topic handle and its writer handle; both are children of the participant, so the
+// Writer may outlive a deleted participant (its handles are then already gone).
+
+#include <dds/dds.h>
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <utility>
+
+#include "grip/common/result.hpp"
+#include "grip/platform/dds/entity.hpp"
+#include "grip/platform/dds/error.hpp"
+#include "grip/platform/dds/participant.hpp"
+#include "grip/platform/dds/qos.hpp"
+#include "grip/platform/dds/topic.hpp"
+
+namespace grip::platform::dds {
+
+template <typename T>
+class Writer {
+ public:
+  static Result<Writer> create(const Participant& participant,
+                               const dds_topic_descriptor_t* descriptor, const std::string& topic,
+                               const Qos& qos) {
+    Result<Entity> topic_entity = create_topic(participant, descriptor, topic);
+    if (!topic_entity.ok()) return topic_entity.error();
+    Result<QosPtr> dds_qos = make_qos(qos);
+    if (!dds_qos.ok()) return dds_qos.error();
+    Result<dds_entity_t> writer = check_entity(
+        dds_create_writer(participant.get(), topic_entity->get(), dds_qos->get(), nullptr),
+        "dds_create_writer");
+    if (!writer.ok()) return writer.error();
+    return Writer(std::move(topic_entity.value()), Entity(writer.value()));
+  }
+
+  // Publishes one sample. A reliable writer may block up to the QoS max_blocking_time and then
+  // fails with "Timeout"; never call this from the planning thread.
+  Status write(const T& sample) { return check(dds_write(writer_.get(), &sample), "dds_write"); }
+
+  Result<dds_publication_matched_status_t> publication_matched() const {
+    dds_publication_matched_status_t status{};
+    Status rc = check(dds_get_publication_matched_status(writer_.get(), &status),
+                      "dds_get_publication_matched_status");
+    if (!rc.ok()) return rc.error();
+    return status;
+  }
+
+  // Waits until at least `readers` readers are matched (start-up and tests only).
+  Status wait_for_readers(std::uint32_t readers, std::chrono::nanoseconds timeout) const {
+    return wait_until_count(
+        [this]() -> Result<std::uint32_t> {
+          Result<dds_publication_matched_status_t> status = publication_matched();
+          if (!status.ok()) return status.error();
+          return status->current_count;
+        },
+        readers, timeout, "publication_matched");
+  }
+
+  dds_entity_t get() const noexcept { return writer_.get(); }
+
+ private:
+  Writer(Entity topic, Entity writer) : topic_(std::move(topic)), writer_(std::move(writer)) {}
+
+  Entity topic_;  // declared first: the writer is deleted before its topic
+  Entity writer_;
+};
+
+}  // namespace grip::platform::dds
