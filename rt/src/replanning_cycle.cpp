@@ -85,7 +85,7 @@ CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
                                      std::int64_t deadline_ns) noexcept {
   CycleOutcome out;
   const std::int64_t cycle_start = now_ns();
-  // 1. The new root: T along the committed plan. A plan always covers T when it exists.
+  // 1. The new root: T along the committed plan, when the plan covers T.
   const TreeState next_root =
       committed_.edge != kNoHandle ? planner_.state_at_step(committed_, cycle_steps_) : TreeState{};
   if (next_root.edge != kNoHandle) {
@@ -137,7 +137,10 @@ CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
   }
   out.commit_ns = now_ns() - commit_start;
   out.plan_available = committed_.edge != kNoHandle;
-  out.solved = planner_.solved() && out.plan_available;
+  // The committed plan reaches the target only if it was not shortened for safety.
+  const TreeState solution = planner_.best_state();
+  out.solved = planner_.solved() && out.committed && candidate.edge == solution.edge &&
+               candidate.index == solution.index;
   const auto& tree = planner_.tree();
   out.tree_edges = tree.edge_count();
   out.trajectories_used = tree.trajectory_count();

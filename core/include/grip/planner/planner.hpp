@@ -259,7 +259,7 @@ class Planner {
   bool problem_set_ = false;
 };
 
-// Creates a planner for the given vehicle with its default parameters and the config.
+// The planners of the three vehicles, instantiated once in planner.cpp.
 using DdVelocityPlanner = Planner<DdVelocity>;
 using DdAccelerationPlanner = Planner<DdAcceleration>;
 using CarPlanner = Planner<Car>;

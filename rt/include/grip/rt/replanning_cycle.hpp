@@ -34,7 +34,7 @@ struct CycleOutcome {
   bool committed = false;       // a new plan was committed
   bool kept_previous = false;   // nothing better: the previous plan continues
   bool plan_available = false;  // a plan covers the next cycle (else the contingency runs)
-  bool solved = false;          // the committed plan reaches the goal
+  bool solved = false;          // the plan committed this cycle ends in the goal region
   bool pool_exhausted = false;  // growth stopped this cycle because the pools were full
   std::uint64_t edges_added = 0;
   std::uint32_t tree_edges = 0;      // after the cycle

@@ -15,12 +15,12 @@ class Entity {
  public:
   Entity() noexcept = default;
   explicit Entity(dds_entity_t handle) noexcept : handle_(handle) {}
-  ~Entity() { reset(); }
+  ~Entity() { static_cast<void>(reset()); }  // failures cannot be reported here
 
   Entity(Entity&& other) noexcept : handle_(other.release()) {}
   Entity& operator=(Entity&& other) noexcept {
     if (this != &other) {
-      reset();
+      static_cast<void>(reset());
       handle_ = other.release();
     }
     return *this;

@@ -37,8 +37,9 @@ class Participant {
   // Deletes the participant (and, through Cyclone, every topic, reader and writer in it).
   Status reset() noexcept { return participant_.reset(); }
 
+  struct Domain;  // implementation detail: shared by the participants of one domain id
+
  private:
-  struct Domain;  // shared by the participants of one domain id in this process
   Participant(DomainId domain_id, std::shared_ptr<Domain> domain, Entity participant)
       : domain_id_(domain_id), domain_(std::move(domain)), participant_(std::move(participant)) {}
 
