@@ -26,6 +26,16 @@ Error to_error(const DdsError& error);
 // rc >= 0 is success. `call` names the DDS function, e.g. "dds_create_topic".
 Status check(dds_return_t rc, const char* call);
 
+// Reads one communication status of an entity (dds_get_*_status), checked like every call.
+template <typename StatusT>
+Result<StatusT> read_status(dds_return_t (*get)(dds_entity_t, StatusT*), dds_entity_t entity,
+                            const char* call) {
+  StatusT status{};
+  Status rc = check(get(entity, &status), call);
+  if (!rc.ok()) return rc.error();
+  return status;
+}
+
 // For calls that return an entity handle (negative = error code).
 Result<dds_entity_t> check_entity(dds_entity_t entity, const char* call);
 

@@ -95,27 +95,18 @@ class Reader {
   }
 
   Result<dds_subscription_matched_status_t> subscription_matched() const {
-    dds_subscription_matched_status_t status{};
-    Status rc = check(dds_get_subscription_matched_status(reader_.get(), &status),
-                      "dds_get_subscription_matched_status");
-    if (!rc.ok()) return rc.error();
-    return status;
+    return read_status(&dds_get_subscription_matched_status, reader_.get(),
+                       "dds_get_subscription_matched_status");
   }
 
   Result<dds_liveliness_changed_status_t> liveliness_changed() const {
-    dds_liveliness_changed_status_t status{};
-    Status rc = check(dds_get_liveliness_changed_status(reader_.get(), &status),
-                      "dds_get_liveliness_changed_status");
-    if (!rc.ok()) return rc.error();
-    return status;
+    return read_status(&dds_get_liveliness_changed_status, reader_.get(),
+                       "dds_get_liveliness_changed_status");
   }
 
   Result<dds_requested_deadline_missed_status_t> requested_deadline_missed() const {
-    dds_requested_deadline_missed_status_t status{};
-    Status rc = check(dds_get_requested_deadline_missed_status(reader_.get(), &status),
-                      "dds_get_requested_deadline_missed_status");
-    if (!rc.ok()) return rc.error();
-    return status;
+    return read_status(&dds_get_requested_deadline_missed_status, reader_.get(),
+                       "dds_get_requested_deadline_missed_status");
   }
 
   // Waits until at least `writers` writers are matched (start-up and tests only).

@@ -41,11 +41,8 @@ class Writer {
   Status write(const T& sample) { return check(dds_write(writer_.get(), &sample), "dds_write"); }
 
   Result<dds_publication_matched_status_t> publication_matched() const {
-    dds_publication_matched_status_t status{};
-    Status rc = check(dds_get_publication_matched_status(writer_.get(), &status),
-                      "dds_get_publication_matched_status");
-    if (!rc.ok()) return rc.error();
-    return status;
+    return read_status(&dds_get_publication_matched_status, writer_.get(),
+                       "dds_get_publication_matched_status");
   }
 
   // Waits until at least `readers` readers are matched (start-up and tests only).
