@@ -17,11 +17,7 @@ namespace grip {
 namespace {
 
 // Sanitizers own malloc, so interposition cannot work there (see alloc_counter.hpp).
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitizerBuild = true;
-#else
-constexpr bool kSanitizerBuild = false;
-#endif
+constexpr bool kSanitizerBuild = GRIP_ALLOC_COUNTER_INTERPOSE == 0;
 
 TEST(AllocCounter, InterposesMallocExceptUnderSanitizers) {
   if constexpr (kSanitizerBuild) {
@@ -36,7 +32,7 @@ TEST(AllocCounter, InterposesMallocExceptUnderSanitizers) {
 
 // The counting tests exist only where counting is possible: a sanitizer build has nothing to
 // count with (checked above), and the unsanitized CI build runs them.
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#if GRIP_ALLOC_COUNTER_INTERPOSE
 // Stores through a volatile pointer so that the compiler cannot elide an allocation whose
 // result is otherwise unused (C++14 allows new/delete pairs to be elided).
 void* volatile g_sink = nullptr;

@@ -253,17 +253,8 @@ TEST(SpscRingConcurrency, ProducerThatNeverWaitsLosesOnlyWhatItCounts) {
   EXPECT_GT(received, 0U);
 }
 
-// Counting allocations needs the real allocator; sanitizers replace it (see alloc_counter.hpp).
-// GCC announces a sanitizer with __SANITIZE_*__, clang only through __has_feature.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define GRIP_RT_TEST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
-    __has_feature(memory_sanitizer)
-#define GRIP_RT_TEST_SANITIZED 1
-#endif
-#endif
-#if !defined(GRIP_RT_TEST_SANITIZED)
+// Counting allocations needs the real allocator; sanitizers replace it.
+#if GRIP_ALLOC_COUNTER_INTERPOSE
 TEST_F(SpscRingTest, PushAndPopNeverTouchTheHeap) {
   ASSERT_TRUE(alloc_counter::interposed())
       << "the allocation counter is not interposed, so this test would prove nothing";

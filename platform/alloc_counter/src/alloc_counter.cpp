@@ -19,18 +19,8 @@
 
 // The sanitizers bring their own malloc and must own every block; our definitions would lose
 // the symbol lookup to theirs anyway, and any we defined that they do not would hand them blocks
-// from glibc. Build without the interposers; interposed() then reports false.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define GRIP_ALLOC_COUNTER_INTERPOSE 0
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
-    __has_feature(memory_sanitizer)
-#define GRIP_ALLOC_COUNTER_INTERPOSE 0
-#endif
-#endif
-#ifndef GRIP_ALLOC_COUNTER_INTERPOSE
-#define GRIP_ALLOC_COUNTER_INTERPOSE 1
-#endif
+// from glibc. There GRIP_ALLOC_COUNTER_INTERPOSE (alloc_counter.hpp) is 0: no interposers, and
+// interposed() reports false.
 
 namespace {
 

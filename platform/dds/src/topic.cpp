@@ -14,4 +14,17 @@ Result<Entity> create_topic(const Participant& participant,
   return Entity(topic.value());
 }
 
+Result<Endpoint> create_endpoint(const Participant& participant,
+                                 const dds_topic_descriptor_t* descriptor, const std::string& name,
+                                 const Qos& qos, CreateEndpoint create, const char* call) {
+  Result<Entity> topic = create_topic(participant, descriptor, name);
+  if (!topic.ok()) return topic.error();
+  Result<QosPtr> dds_qos = make_qos(qos);
+  if (!dds_qos.ok()) return dds_qos.error();
+  Result<dds_entity_t> endpoint =
+      check_entity(create(participant.get(), topic->get(), dds_qos->get(), nullptr), call);
+  if (!endpoint.ok()) return endpoint.error();
+  return Endpoint{std::move(topic.value()), Entity(endpoint.value())};
+}
+
 }  // namespace grip::platform::dds

@@ -25,6 +25,21 @@
 
 #include <cstdint>
 
+// 1 when this build interposes the allocator and can count; 0 under a sanitizer, whose own
+// malloc must own every block (GCC announces one with __SANITIZE_*__, clang only through
+// __has_feature). Tests that count allocations compile only where this is 1.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define GRIP_ALLOC_COUNTER_INTERPOSE 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
+    __has_feature(memory_sanitizer)
+#define GRIP_ALLOC_COUNTER_INTERPOSE 0
+#endif
+#endif
+#ifndef GRIP_ALLOC_COUNTER_INTERPOSE
+#define GRIP_ALLOC_COUNTER_INTERPOSE 1
+#endif
+
 namespace grip::alloc_counter {
 
 struct Counts {

@@ -63,15 +63,10 @@ class Reader {
   static Result<Reader> create(const Participant& participant,
                                const dds_topic_descriptor_t* descriptor, const std::string& topic,
                                const Qos& qos) {
-    Result<Entity> topic_entity = create_topic(participant, descriptor, topic);
-    if (!topic_entity.ok()) return topic_entity.error();
-    Result<QosPtr> dds_qos = make_qos(qos);
-    if (!dds_qos.ok()) return dds_qos.error();
-    Result<dds_entity_t> reader = check_entity(
-        dds_create_reader(participant.get(), topic_entity->get(), dds_qos->get(), nullptr),
-        "dds_create_reader");
-    if (!reader.ok()) return reader.error();
-    return Reader(descriptor, std::move(topic_entity.value()), Entity(reader.value()));
+    Result<Endpoint> created = create_endpoint(participant, descriptor, topic, qos,
+                                               &dds_create_reader, "dds_create_reader");
+    if (!created.ok()) return created.error();
+    return Reader(descriptor, std::move(created->topic), std::move(created->endpoint));
   }
 
   // Takes up to N samples without blocking. Returns how many valid data samples are now at the

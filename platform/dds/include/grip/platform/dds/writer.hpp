@@ -25,15 +25,10 @@ class Writer {
   static Result<Writer> create(const Participant& participant,
                                const dds_topic_descriptor_t* descriptor, const std::string& topic,
                                const Qos& qos) {
-    Result<Entity> topic_entity = create_topic(participant, descriptor, topic);
-    if (!topic_entity.ok()) return topic_entity.error();
-    Result<QosPtr> dds_qos = make_qos(qos);
-    if (!dds_qos.ok()) return dds_qos.error();
-    Result<dds_entity_t> writer = check_entity(
-        dds_create_writer(participant.get(), topic_entity->get(), dds_qos->get(), nullptr),
-        "dds_create_writer");
-    if (!writer.ok()) return writer.error();
-    return Writer(std::move(topic_entity.value()), Entity(writer.value()));
+    Result<Endpoint> created = create_endpoint(participant, descriptor, topic, qos,
+                                               &dds_create_writer, "dds_create_writer");
+    if (!created.ok()) return created.error();
+    return Writer(std::move(created->topic), std::move(created->endpoint));
   }
 
   // Publishes one sample. A reliable writer may block up to the QoS max_blocking_time and then
