@@ -1,53 +1,40 @@
 #include "grip/planner/planner.hpp"
 
 #include <algorithm>
+#include <array>
 #include <string>
+
+#include "grip/common/enum_names.hpp"
 
 namespace grip {
 
-std::string_view solve_status_name(SolveStatus s) noexcept {
-  switch (s) {
-    case SolveStatus::kExactSolution:
-      return "exact";
-    case SolveStatus::kApproximateSolution:
-      return "approximate";
-    case SolveStatus::kNoSolution:
-      return "none";
-  }
-  return "unknown";
-}
+namespace {
+constexpr std::array<NamedValue<SolveStatus>, 3> kSolveStatusNames{{
+    {SolveStatus::kExactSolution, "exact"},
+    {SolveStatus::kApproximateSolution, "approximate"},
+    {SolveStatus::kNoSolution, "none"},
+}};
+constexpr std::array<NamedValue<RetainStatus>, 7> kRetainStatusNames{{
+    {RetainStatus::kOk, "ok"},
+    {RetainStatus::kUnsupportedSelection, "unsupported-selection"},
+    {RetainStatus::kRootNotInTree, "root-not-in-tree"},
+    {RetainStatus::kRootInCollision, "root-in-collision"},
+    {RetainStatus::kInvalidState, "invalid-state"},
+    {RetainStatus::kGoalOutsideGrid, "goal-outside-grid"},
+    {RetainStatus::kGoalWithoutFreeCell, "goal-without-free-cell"},
+}};
+constexpr std::array<NamedValue<StopReason>, 3> kStopReasonNames{{
+    {StopReason::kGoalReached, "goal-reached"},
+    {StopReason::kTerminationCondition, "terminated"},
+    {StopReason::kPoolExhausted, "pool-exhausted"},
+}};
+}  // namespace
 
+std::string_view solve_status_name(SolveStatus s) noexcept { return name_in(kSolveStatusNames, s); }
 std::string_view retain_status_name(RetainStatus s) noexcept {
-  switch (s) {
-    case RetainStatus::kOk:
-      return "ok";
-    case RetainStatus::kUnsupportedSelection:
-      return "unsupported-selection";
-    case RetainStatus::kRootNotInTree:
-      return "root-not-in-tree";
-    case RetainStatus::kRootInCollision:
-      return "root-in-collision";
-    case RetainStatus::kInvalidState:
-      return "invalid-state";
-    case RetainStatus::kGoalOutsideGrid:
-      return "goal-outside-grid";
-    case RetainStatus::kGoalWithoutFreeCell:
-      return "goal-without-free-cell";
-  }
-  return "unknown";
+  return name_in(kRetainStatusNames, s);
 }
-
-std::string_view stop_reason_name(StopReason r) noexcept {
-  switch (r) {
-    case StopReason::kGoalReached:
-      return "goal-reached";
-    case StopReason::kTerminationCondition:
-      return "terminated";
-    case StopReason::kPoolExhausted:
-      return "pool-exhausted";
-  }
-  return "unknown";
-}
+std::string_view stop_reason_name(StopReason r) noexcept { return name_in(kStopReasonNames, r); }
 
 namespace {
 
