@@ -34,6 +34,11 @@ class Writer {
   // Publishes one sample. A reliable writer may block up to the QoS max_blocking_time and then
   // fails with "Timeout"; never call this from the planning thread.
   Status write(const T& sample) { return check(dds_write(writer_.get(), &sample), "dds_write"); }
+  // As write(), with the source timestamp given (DDS time, ns since the epoch) rather than now:
+  // for a sample measured earlier than it is sent.
+  Status write_at(const T& sample, dds_time_t source_timestamp) {
+    return check(dds_write_ts(writer_.get(), &sample, source_timestamp), "dds_write_ts");
+  }
 
   Result<dds_publication_matched_status_t> publication_matched() const {
     return read_status(&dds_get_publication_matched_status, writer_.get(),

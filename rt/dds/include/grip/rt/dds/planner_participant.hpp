@@ -1,0 +1,100 @@
+#pragma once
+// The replanning runtime as a DDS participant (`grip planner`): it subscribes to vehicle state,
+// map updates and goals, and publishes plans and its status.
+//
+// Threads, and what crosses between them (all hand-offs bounded and lock-free):
+//   receive thread (ordinary): waits on the readers, validates every sample, keeps the map in
+//     sync (MapReceiver, asking for snapshots after gaps) and hands over
+//       map tiles  -> SpscRing (planning thread applies them before its next cycle)
+//       states, goals -> TripleBuffer (latest wins)
+//   planning thread (SCHED_DEADLINE, rt::PeriodicLoop): one replanning cycle per period; it never
+//     calls into DDS. Its plan and status go out through TripleBuffers and a Wakeup signal.
+//   publish thread (ordinary): writes plans and status. A reliable writer that blocks in
+//     dds_write (up to max_blocking_time) delays only this thread; the planning thread meanwhile
+//     replaces the pending plan by a newer one, and the replaced one is counted as superseded.
+//
+// Start-up (run()): the planner waits for the map to be in sync, a vehicle state and a goal,
+// then builds the planner (all allocation happens here) and starts the planning thread.
+// Losing the vehicle (its liveliness lease expires) does not stop planning: the planner keeps
+// planning on its last map and state, and says so in its status; the controller, for its part,
+// falls back to the contingency maneuver that ends every plan.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "grip/common/result.hpp"
+#include "grip/platform/dds/participant.hpp"
+#include "grip/platform/memory.hpp"
+#include "grip/platform/scheduling.hpp"
+#include "grip/rt/dds/messages.hpp"
+#include "grip/rt/latency_histogram.hpp"
+#include "grip/vehicles/vehicle.hpp"
+
+namespace grip::rt::dds {
+
+struct PlannerParticipantConfig {
+  platform::dds::DomainId domain = 0;
+  std::string dds_config;  // Cyclone XML or file:// URI; empty: the built-in loopback-only one
+  VehicleKind robot = VehicleKind::kCar;
+  double cycle_s = 0.05;    // T, in vehicle time
+  double budget_s = 0.025;  // planning time per cycle, in vehicle time
+  double margin_s = -1.0;   // growth stops this long before the deadline; < 0: budget / 5, >= 2 ms
+  platform::PolicyRequest policy = platform::PolicyRequest::kAuto;
+  std::uint32_t max_edges = 0;  // 0: 400 per millisecond of wall-clock budget
+  std::uint32_t max_map_cells = 1U << 22;
+  std::uint64_t seed = 1;
+  std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
+  std::chrono::nanoseconds startup_timeout{0};  // 0: wait for ever
+  double duration_s = 0.0;                      // wall clock; 0: until request_stop()
+  bool lock_memory = true;
+  // Called about every 250 ms from run()'s thread with a one-line summary (progress display).
+  std::function<void(const std::string&)> on_progress;
+};
+
+struct PlannerParticipantReport {
+  std::string policy;           // the planning thread's scheduling policy
+  std::string policy_fallback;  // why a stronger policy was refused, empty if none
+  double time_scale = 1.0;
+  std::uint64_t cycles = 0;
+  std::uint64_t misses = 0;
+  std::uint64_t plans_committed = 0;  // cycles that handed a plan to the publish thread
+  std::uint64_t plans_published = 0;
+  std::uint64_t plans_superseded = 0;  // replaced by a newer plan before the writer took them
+  std::uint64_t write_failures = 0;
+  std::uint64_t rejected_vehicle_state = 0;
+  std::uint64_t rejected_map_update = 0;
+  std::uint64_t rejected_goal = 0;
+  std::uint64_t map_gaps = 0;
+  std::uint64_t map_heals = 0;
+  std::uint64_t map_sequence = 0;    // last update the planning thread applied
+  std::uint64_t map_checksum = 0;    // of the planning thread's map at the end
+  std::uint64_t vehicle_losses = 0;  // times the vehicle's liveliness was lost
+  bool allocations_counted = false;
+  std::uint64_t heap_allocations_in_loop = 0;  // planning thread, after warm-up
+  platform::ThreadUsage usage_in_loop{};
+  LatencyHistogram wake_latency;
+  LatencyHistogram compute;
+};
+
+class PlannerParticipant {
+ public:
+  // Creates the participant, its readers and writers, and starts the receive thread.
+  static Result<std::unique_ptr<PlannerParticipant>> create(const PlannerParticipantConfig& config);
+  virtual ~PlannerParticipant() = default;
+
+  // Start-up, then planning until duration_s passes or request_stop(). An error when start-up
+  // fails (timeout: names what is missing) or the planning thread cannot start.
+  virtual Result<PlannerParticipantReport> run() = 0;
+  // Any thread (a signal handler's forwarding thread included).
+  void request_stop() noexcept { stop_.store(true, std::memory_order_release); }
+
+ protected:
+  PlannerParticipant() = default;
+  std::atomic<bool> stop_{false};
+};
+
+}  // namespace grip::rt::dds

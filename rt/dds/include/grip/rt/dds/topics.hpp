@@ -1,0 +1,46 @@
+#pragma once
+// The topics of the contract and their QoS, in one place for every participant (the planner,
+// the simulator, tests and tools), so that both ends of a link always match.
+//
+// Chosen for a control link (documented in README "DDS contract"):
+//   vehicle state, plan: RELIABLE, KEEP_LAST 1. Only the newest state or plan matters, and a
+//     reliable keep-last writer never blocks on a slow reader (the newest sample replaces the
+//     one not yet acknowledged), yet nothing is lost on a healthy link, which lockstep
+//     simulation relies on. DEADLINE: writers offer 2 T / time scale, readers request 2 T.
+//   map update: RELIABLE, KEEP_LAST 64: depth for bursts (a snapshot of a 1000 x 1000 map is 16
+//     parts); anything lost anyway is a gap in the sequence numbers, healed by a snapshot.
+//   map request: RELIABLE, KEEP_LAST 4.
+//   goal: RELIABLE, KEEP_LAST 1, TRANSIENT_LOCAL: a planner that starts late still gets the goal.
+//   planner status: RELIABLE, KEEP_LAST 1.
+//   All: AUTOMATIC liveliness with the given lease, so that each side notices the other's loss
+//   within about one lease; max_blocking_time 10 ms (only keep-last-64 map updates can block).
+
+#include <chrono>
+
+#include "grip/platform/dds/qos.hpp"
+
+namespace grip::rt::dds {
+
+inline constexpr const char* kVehicleStateTopic = "grip_vehicle_state";
+inline constexpr const char* kPlanTopic = "grip_plan";
+inline constexpr const char* kMapUpdateTopic = "grip_map_update";
+inline constexpr const char* kMapRequestTopic = "grip_map_request";
+inline constexpr const char* kGoalTopic = "grip_goal";
+inline constexpr const char* kPlannerStatusTopic = "grip_planner_status";
+
+struct LinkTiming {
+  std::chrono::nanoseconds cycle{std::chrono::milliseconds(50)};  // T in vehicle time
+  double time_scale = 1.0;  // writers offer a deadline of 2 T / time_scale
+  std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
+};
+
+enum class Endpoint { kReader, kWriter };
+
+platform::dds::Qos vehicle_state_qos(const LinkTiming& timing, Endpoint side);
+platform::dds::Qos plan_qos(const LinkTiming& timing, Endpoint side);
+platform::dds::Qos map_update_qos(const LinkTiming& timing);
+platform::dds::Qos map_request_qos(const LinkTiming& timing);
+platform::dds::Qos goal_qos(const LinkTiming& timing);
+platform::dds::Qos planner_status_qos(const LinkTiming& timing);
+
+}  // namespace grip::rt::dds

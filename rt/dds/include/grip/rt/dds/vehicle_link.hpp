@@ -1,0 +1,89 @@
+#pragma once
+// The vehicle controller's end of the contract (the simulator stands in for it; tests and tools
+// use it too): publishes vehicle state, map updates (answering the planner's map requests with
+// snapshots) and goals; receives plans, validated, and the planner's status. Ordinary threads
+// only: a writer here may block up to its QoS max_blocking_time.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "goal.h"
+#include "grip/common/result.hpp"
+#include "grip/platform/dds/participant.hpp"
+#include "grip/platform/dds/reader.hpp"
+#include "grip/platform/dds/writer.hpp"
+#include "grip/rt/dds/map_sync.hpp"
+#include "grip/rt/dds/topics.hpp"
+#include "map_update.h"
+#include "plan.h"
+#include "planner_status.h"
+#include "vehicle_state.h"
+
+namespace grip::rt::dds {
+
+struct VehicleLinkConfig {
+  platform::dds::DomainId domain = 0;
+  std::string dds_config;  // empty: the built-in loopback-only configuration
+  VehicleKind kind = VehicleKind::kCar;
+  LinkTiming timing;
+};
+
+class VehicleLink {
+ public:
+  // `map` is the mapping side's authoritative map (the sensed map, in the simulator).
+  static Result<std::unique_ptr<VehicleLink>> create(const VehicleLinkConfig& config,
+                                                     OccupancyGrid map);
+
+  Status publish_state(const grip_msg_VehicleState& state);
+  Status publish_goal(const grip_msg_Goal& goal);
+  // Sends the cells of `box` of map() as updates. `drop` (tests: a lossy link) decides for each
+  // update whether it is withheld; a withheld update still consumes its sequence number.
+  void publish_map_updates(const CellBox& box, std::uint64_t stamp_ns,
+                           FunctionRef<bool(const grip_msg_MapUpdate&)> drop = keep_all);
+  // Answers pending map requests with one snapshot (several requests, one snapshot).
+  void answer_map_requests(std::uint64_t stamp_ns);
+
+  // The newest valid plan received since the last call, if any; invalid plans are counted.
+  const grip_msg_Plan* take_plan();
+  std::optional<grip_msg_PlannerStatus> take_status();
+
+  OccupancyGrid& map() noexcept { return sender_.map(); }
+  const MapSender& map_sender() const noexcept { return sender_; }
+  std::uint64_t plans_rejected() const noexcept { return plans_rejected_; }
+  std::uint64_t map_writes_failed() const noexcept { return map_writes_failed_; }
+  std::uint64_t snapshots_sent() const noexcept { return sender_.snapshots_sent(); }
+  // Liveliness of the planner as seen from here (its plan writer).
+  bool planner_alive() const;
+  const platform::dds::Reader<grip_msg_Plan>& plan_reader() const noexcept { return plans_; }
+
+ private:
+  static bool keep_all(const grip_msg_MapUpdate&) { return false; }
+  VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
+              platform::dds::Participant participant,
+              platform::dds::Writer<grip_msg_VehicleState> states,
+              platform::dds::Writer<grip_msg_MapUpdate> maps,
+              platform::dds::Writer<grip_msg_Goal> goals,
+              platform::dds::Reader<grip_msg_MapRequest> requests,
+              platform::dds::Reader<grip_msg_Plan> plans,
+              platform::dds::Reader<grip_msg_PlannerStatus> status);
+  void send(const grip_msg_MapUpdate& update);
+
+  VehicleKind kind_;
+  platform::dds::Participant participant_;
+  platform::dds::Writer<grip_msg_VehicleState> states_;
+  platform::dds::Writer<grip_msg_MapUpdate> maps_;
+  platform::dds::Writer<grip_msg_Goal> goals_;
+  platform::dds::Reader<grip_msg_MapRequest> requests_;
+  platform::dds::Reader<grip_msg_Plan> plans_;
+  platform::dds::Reader<grip_msg_PlannerStatus> status_;
+  MapSender sender_;
+  std::unique_ptr<platform::dds::SampleBuffer<grip_msg_Plan, 4>> plan_buffer_;
+  std::unique_ptr<platform::dds::SampleBuffer<grip_msg_MapRequest, 8>> request_buffer_;
+  std::unique_ptr<platform::dds::SampleBuffer<grip_msg_PlannerStatus, 4>> status_buffer_;
+  std::uint64_t plans_rejected_ = 0;
+  std::uint64_t map_writes_failed_ = 0;
+};
+
+}  // namespace grip::rt::dds

@@ -1,0 +1,790 @@
+#include "grip/rt/dds/planner_participant.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "goal.h"
+#include "grip/platform/clock.hpp"
+#include "grip/platform/dds/reader.hpp"
+#include "grip/platform/dds/waitset.hpp"
+#include "grip/platform/dds/writer.hpp"
+#include "grip/platform/wakeup.hpp"
+#include "grip/rt/dds/map_sync.hpp"
+#include "grip/rt/dds/topics.hpp"
+#include "grip/rt/periodic_loop.hpp"
+#include "grip/rt/replanning_cycle.hpp"
+#include "grip/rt/spsc_ring.hpp"
+#include "grip/rt/triple_buffer.hpp"
+#include "grip/vehicles/default_vehicle.hpp"
+#include "map_update.h"
+#include "plan.h"
+#include "planner_status.h"
+#include "vehicle_state.h"
+
+namespace grip::rt::dds {
+
+namespace {
+
+namespace pdds = platform::dds;
+
+// Map tiles handed to the planning thread: 128 x 128 cells, so that a sensor sweep's change is
+// one or a few tiles and a 300 x 300 map's first sync is nine.
+constexpr int kTileSide = 128;
+constexpr std::size_t kTileRing = 32;
+
+struct MapTile {
+  CellBox box;                     // inside the map, at most kTileSide on a side
+  std::uint64_t map_sequence = 0;  // the receiver's last applied update when cut
+  bool in_sync = false;            // the receiver's map was in sync when cut
+  bool last_of_batch = false;      // no other tile was pending when this one was cut
+  std::array<Cell, static_cast<std::size_t>(kTileSide) * kTileSide> cells{};
+};
+
+struct StateSample {
+  std::array<double, 5> state{};
+  std::uint64_t stamp_ns = 0;
+  std::uint64_t sequence_number = 0;
+  double time_scale = 1.0;
+};
+
+struct PlanSlot {
+  std::uint64_t cycle = 0;
+  std::uint64_t start_time_ns = 0;
+  std::array<double, 5> start_state{};
+  std::uint32_t state_dim = 0;
+  std::uint64_t state_sequence = 0;
+  std::uint64_t committed_monotonic_ns = 0;
+  std::uint32_t steps = 0;
+  std::array<grip_msg_PlanStep, grip_msg_kMaxPlanSteps> step{};
+};
+
+struct CycleStatus {
+  std::uint64_t cycle = 0;
+  std::uint64_t misses = 0;
+  std::uint64_t tree_edges = 0;
+  std::uint64_t edges_added = 0;
+  double cycle_time_s = 0.0;
+  std::uint64_t map_sequence = 0;
+  std::uint64_t map_checksum = 0;
+  bool map_in_sync = false;
+};
+
+// Counters of the receive thread, read by others.
+struct ReceiveCounters {
+  std::atomic<std::uint64_t> rejected_vehicle_state{0};
+  std::atomic<std::uint64_t> rejected_map_update{0};
+  std::atomic<std::uint64_t> rejected_goal{0};
+  std::atomic<std::uint64_t> map_gaps{0};
+  std::atomic<std::uint64_t> map_heals{0};
+  std::atomic<std::uint64_t> vehicle_losses{0};
+  std::atomic<bool> vehicle_alive{false};
+};
+
+// One log line per topic and second at most; the rest are counted and summarised.
+class RateLimitedLog {
+ public:
+  void rejected(const char* topic, const Verdict& verdict, std::int64_t now_ns) {
+    if (now_ns - last_ns_ < 1'000'000'000 && last_ns_ != 0) {
+      ++suppressed_;
+      return;
+    }
+    std::fprintf(stderr, "grip planner: rejected %s: %.*s (%s)", topic,
+                 static_cast<int>(rejection_name(verdict.reason).size()),
+                 rejection_name(verdict.reason).data(), verdict.field);
+    if (suppressed_ > 0)
+      std::fprintf(stderr, "; %llu more rejected in the last second",
+                   static_cast<unsigned long long>(suppressed_));
+    std::fprintf(stderr, "\n");
+    suppressed_ = 0;
+    last_ns_ = now_ns;
+  }
+
+ private:
+  std::int64_t last_ns_ = 0;
+  std::uint64_t suppressed_ = 0;
+};
+
+// The vehicle clock as seen from this computer: vehicle_ns = scale * local_ns + offset. A
+// state stamped S and received at local time L gives S - scale * L, below the true offset by
+// the delivery latency, so the largest of recent values is the best estimate.
+class VehicleClock {
+ public:
+  void observe(std::uint64_t stamp_ns, std::int64_t local_ns, double scale) noexcept {
+    const auto candidate = static_cast<std::int64_t>(static_cast<double>(stamp_ns) -
+                                                     scale * static_cast<double>(local_ns));
+    window_[next_++ % window_.size()] = candidate;
+    filled_ = std::min<std::size_t>(filled_ + 1, window_.size());
+    std::int64_t best = window_[0];
+    for (std::size_t i = 1; i < filled_; ++i) best = std::max(best, window_[i]);
+    offset_ns_.store(best, std::memory_order_relaxed);
+  }
+  std::int64_t vehicle_ns(std::int64_t local_ns, double scale) const noexcept {
+    return static_cast<std::int64_t>(scale * static_cast<double>(local_ns)) +
+           offset_ns_.load(std::memory_order_relaxed);
+  }
+
+ private:
+  std::array<std::int64_t, 64> window_{};
+  std::size_t next_ = 0;
+  std::size_t filled_ = 0;
+  std::atomic<std::int64_t> offset_ns_{0};
+};
+
+// The DDS time of a sample's source timestamp against now, for freshness checks.
+Verdict check_sample_freshness(const dds_sample_info_t& info) {
+  return check_freshness(info.source_timestamp, dds_time(), FreshnessLimits{});
+}
+
+std::int64_t ns_of(double s) { return static_cast<std::int64_t>(std::llround(s * 1e9)); }
+
+template <VehicleModel V>
+class PlannerParticipantFor final : public PlannerParticipant {
+ public:
+  using State = typename V::State;
+
+  static Result<std::unique_ptr<PlannerParticipant>> create(const PlannerParticipantConfig& config,
+                                                            const V& vehicle);
+  ~PlannerParticipantFor() override;
+  Result<PlannerParticipantReport> run() override;
+
+ private:
+  struct Entities {
+    pdds::Participant participant;
+    pdds::Reader<grip_msg_VehicleState> states;
+    pdds::Reader<grip_msg_MapUpdate> maps;
+    pdds::Reader<grip_msg_Goal> goals;
+    pdds::Writer<grip_msg_MapRequest> requests;
+    pdds::Writer<grip_msg_Plan> plans;
+    pdds::Writer<grip_msg_PlannerStatus> status;
+    pdds::WaitSet waitset;
+  };
+
+  PlannerParticipantFor(const PlannerParticipantConfig& config, const V& vehicle, Entities entities,
+                        platform::Wakeup wakeup);
+
+  // Receive thread.
+  void receive_main();
+  void take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& buffer);
+  void take_maps(pdds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer);
+  void take_goals(pdds::SampleBuffer<grip_msg_Goal, 4>& buffer);
+  void accept_goal(const grip_msg_Goal& goal);
+  void mark_dirty(const CellBox& box);
+  void hand_over_tiles();
+  void check_liveliness();
+
+  // Planning thread (and run() during start-up, before the planning thread exists).
+  bool apply_tiles(CellBox& newly_blocked) noexcept;
+  CycleOutcome cycle_body(std::int64_t release_ns, std::int64_t deadline_ns) noexcept;
+
+  // Publish thread.
+  void publish_main();
+  void publish_plan(const PlanSlot& slot);
+  void publish_status(const CycleStatus& status);
+
+  Status start_up();
+  Status create_cycle(double time_scale);
+  std::string progress_line(const PlannerParticipantReport& report) const;
+  static State state_of(const StateSample& sample) noexcept {
+    State q;
+    for (int i = 0; i < V::kStateDim; ++i) q[i] = sample.state[static_cast<std::size_t>(i)];
+    return q;
+  }
+
+  PlannerParticipantConfig config_;
+  V vehicle_;
+  Entities dds_;
+  platform::Wakeup wakeup_;
+  std::atomic<bool> threads_stop_{false};
+
+  // Receive thread only.
+  MapReceiver receiver_;
+  std::vector<CellBox> dirty_;  // per tile
+  int tiles_x_ = 0;
+  int tiles_y_ = 0;
+  std::uint64_t last_state_stamp_ = 0;
+  std::optional<grip_msg_Goal> pending_goal_;  // arrived before the map: checked once it exists
+  RateLimitedLog log_;
+  bool was_alive_ = false;
+  std::unique_ptr<MapTile> handover_tile_ = std::make_unique<MapTile>();  // 16 KiB
+
+  // Shared, lock-free.
+  std::atomic<bool> geometry_ready_{false};
+  MapGeometry geometry_;  // written once before geometry_ready_ (release)
+  std::unique_ptr<SpscRing<MapTile, kTileRing>> tiles_ =
+      std::make_unique<SpscRing<MapTile, kTileRing>>();
+  std::unique_ptr<TripleBuffer<StateSample>> states_ =
+      std::make_unique<TripleBuffer<StateSample>>();
+  std::unique_ptr<TripleBuffer<GoalRegion>> goals_ = std::make_unique<TripleBuffer<GoalRegion>>();
+  std::unique_ptr<TripleBuffer<PlanSlot>> plans_ = std::make_unique<TripleBuffer<PlanSlot>>();
+  std::unique_ptr<TripleBuffer<CycleStatus>> statuses_ =
+      std::make_unique<TripleBuffer<CycleStatus>>();
+  ReceiveCounters counters_;
+  VehicleClock clock_;
+  std::atomic<std::uint64_t> plans_published_{0};
+  std::atomic<std::uint64_t> write_failures_{0};
+
+  // Planning thread only (after start-up).
+  std::optional<OccupancyGrid> grid_;
+  std::optional<ReplanningCycle<V>> cycle_;
+  std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
+  double time_scale_ = 1.0;
+  std::int64_t period_wall_ns_ = 0;
+  std::uint64_t state_sequence_ = 0;
+  std::uint64_t cycles_ = 0;
+  std::uint64_t misses_ = 0;
+  std::uint64_t plans_committed_ = 0;
+  std::uint64_t map_sequence_ = 0;
+  std::uint64_t map_checksum_ = 0;
+  bool map_in_sync_ = false;
+
+  std::thread receive_thread_;
+  std::thread publish_thread_;
+};
+
+template <VehicleModel V>
+Result<std::unique_ptr<PlannerParticipant>> PlannerParticipantFor<V>::create(
+    const PlannerParticipantConfig& config, const V& vehicle) {
+  LinkTiming timing;
+  timing.cycle = std::chrono::nanoseconds(ns_of(config.cycle_s));
+  timing.liveliness_lease = config.liveliness_lease;
+  auto participant = pdds::Participant::create(config.domain, config.dds_config);
+  if (!participant) return participant.error();
+  auto states = pdds::Reader<grip_msg_VehicleState>::create(
+      *participant, &grip_msg_VehicleState_desc, kVehicleStateTopic,
+      vehicle_state_qos(timing, Endpoint::kReader));
+  if (!states) return states.error();
+  auto maps = pdds::Reader<grip_msg_MapUpdate>::create(*participant, &grip_msg_MapUpdate_desc,
+                                                       kMapUpdateTopic, map_update_qos(timing));
+  if (!maps) return maps.error();
+  auto goals = pdds::Reader<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc, kGoalTopic,
+                                                   goal_qos(timing));
+  if (!goals) return goals.error();
+  auto requests = pdds::Writer<grip_msg_MapRequest>::create(
+      *participant, &grip_msg_MapRequest_desc, kMapRequestTopic, map_request_qos(timing));
+  if (!requests) return requests.error();
+  auto plans = pdds::Writer<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, kPlanTopic,
+                                                   plan_qos(timing, Endpoint::kWriter));
+  if (!plans) return plans.error();
+  auto status = pdds::Writer<grip_msg_PlannerStatus>::create(
+      *participant, &grip_msg_PlannerStatus_desc, kPlannerStatusTopic, planner_status_qos(timing));
+  if (!status) return status.error();
+  auto waitset = pdds::WaitSet::create(*participant);
+  if (!waitset) return waitset.error();
+  for (const dds_entity_t reader : {states->get(), maps->get(), goals->get()}) {
+    if (Status s = waitset->attach_data_available(reader); !s) return s.error();
+  }
+  auto wakeup = platform::Wakeup::create();
+  if (!wakeup) return wakeup.error();
+  std::unique_ptr<PlannerParticipantFor> self(new PlannerParticipantFor(
+      config, vehicle,
+      Entities{std::move(participant).value(), std::move(states).value(), std::move(maps).value(),
+               std::move(goals).value(), std::move(requests).value(), std::move(plans).value(),
+               std::move(status).value(), std::move(waitset).value()},
+      std::move(wakeup).value()));
+  // Service threads start now: before any SCHED_DEADLINE thread, which could not create them.
+  self->receive_thread_ = std::thread([raw = self.get()] { raw->receive_main(); });
+  self->publish_thread_ = std::thread([raw = self.get()] { raw->publish_main(); });
+  return std::unique_ptr<PlannerParticipant>(std::move(self));
+}
+
+template <VehicleModel V>
+PlannerParticipantFor<V>::PlannerParticipantFor(const PlannerParticipantConfig& config,
+                                                const V& vehicle, Entities entities,
+                                                platform::Wakeup wakeup)
+    : config_(config),
+      vehicle_(vehicle),
+      dds_(std::move(entities)),
+      wakeup_(std::move(wakeup)),
+      receiver_(config.max_map_cells) {}
+
+template <VehicleModel V>
+PlannerParticipantFor<V>::~PlannerParticipantFor() {
+  threads_stop_.store(true, std::memory_order_release);
+  static_cast<void>(dds_.waitset.wake());
+  wakeup_.signal();
+  if (receive_thread_.joinable()) receive_thread_.join();
+  if (publish_thread_.joinable()) publish_thread_.join();
+}
+
+// ---- Receive thread ----
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::receive_main() {
+  // Sample storage reused for every take: after the first few, takes no longer allocate.
+  auto state_buffer =
+      std::make_unique<pdds::SampleBuffer<grip_msg_VehicleState, 8>>(&grip_msg_VehicleState_desc);
+  auto map_buffer =
+      std::make_unique<pdds::SampleBuffer<grip_msg_MapUpdate, 8>>(&grip_msg_MapUpdate_desc);
+  auto goal_buffer = std::make_unique<pdds::SampleBuffer<grip_msg_Goal, 4>>(&grip_msg_Goal_desc);
+  while (!threads_stop_.load(std::memory_order_acquire)) {
+    // The timeout paces the periodic work: snapshot requests, tiles the ring had no room for,
+    // liveliness.
+    static_cast<void>(dds_.waitset.wait(std::chrono::milliseconds(20)));
+    take_states(*state_buffer);
+    take_maps(*map_buffer);
+    take_goals(*goal_buffer);
+    const std::int64_t now = platform::now_ns();
+    if (receiver_.should_request(now, 500'000'000)) {
+      grip_msg_MapRequest request{};
+      request.from_sequence = receiver_.next_expected();
+      request.stamp_ns = static_cast<std::uint64_t>(clock_.vehicle_ns(now, 1.0));
+      if (dds_.requests.write(request).ok()) receiver_.note_requested(now);
+    }
+    hand_over_tiles();
+    check_liveliness();
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& buffer) {
+  for (;;) {
+    const Result<std::size_t> taken = dds_.states.take(buffer);
+    if (!taken.ok() || *taken == 0) return;
+    for (std::size_t i = 0; i < *taken; ++i) {
+      const grip_msg_VehicleState& msg = buffer[i];
+      Verdict verdict = check_sample_freshness(buffer.info(i));
+      if (verdict.ok()) verdict = check_vehicle_state(msg, vehicle_, last_state_stamp_);
+      const std::int64_t now = platform::now_ns();
+      if (!verdict.ok()) {
+        counters_.rejected_vehicle_state.fetch_add(1, std::memory_order_relaxed);
+        log_.rejected("vehicle state", verdict, now);
+        continue;
+      }
+      last_state_stamp_ = msg.stamp_ns;
+      clock_.observe(msg.stamp_ns, now, msg.time_scale);
+      StateSample& sample = states_->write_buffer();
+      std::copy(std::begin(msg.state), std::end(msg.state), sample.state.begin());
+      sample.stamp_ns = msg.stamp_ns;
+      sample.sequence_number = msg.sequence_number;
+      sample.time_scale = msg.time_scale;
+      states_->publish();
+    }
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::take_maps(pdds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer) {
+  for (;;) {
+    const Result<std::size_t> taken = dds_.maps.take(buffer);
+    if (!taken.ok() || *taken == 0) return;
+    for (std::size_t i = 0; i < *taken; ++i) {
+      const std::int64_t now = platform::now_ns();
+      const Verdict fresh = check_sample_freshness(buffer.info(i));
+      const bool had_map = receiver_.has_map();
+      const MapApplied applied =
+          fresh.ok() ? receiver_.apply(buffer[i]) : MapApplied{fresh, false, false, false, {}};
+      if (!applied.verdict.ok()) {
+        counters_.rejected_map_update.fetch_add(1, std::memory_order_relaxed);
+        log_.rejected("map update", applied.verdict, now);
+        continue;
+      }
+      if (!had_map) {
+        geometry_ = geometry_of(receiver_.map());
+        tiles_x_ = (receiver_.map().width() + kTileSide - 1) / kTileSide;
+        tiles_y_ = (receiver_.map().height() + kTileSide - 1) / kTileSide;
+        dirty_.assign(static_cast<std::size_t>(tiles_x_ * tiles_y_), CellBox{});
+        geometry_ready_.store(true, std::memory_order_release);
+        if (pending_goal_) accept_goal(*pending_goal_);
+        pending_goal_.reset();
+      }
+      if (applied.gap) {
+        counters_.map_gaps.fetch_add(1, std::memory_order_relaxed);
+        std::fprintf(stderr,
+                     "grip planner: map update gap before sequence %llu; requesting a snapshot\n",
+                     static_cast<unsigned long long>(buffer[i].sequence_number));
+      }
+      if (applied.healed) counters_.map_heals.fetch_add(1, std::memory_order_relaxed);
+      mark_dirty(applied.changed);
+    }
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::take_goals(pdds::SampleBuffer<grip_msg_Goal, 4>& buffer) {
+  for (;;) {
+    const Result<std::size_t> taken = dds_.goals.take(buffer);
+    if (!taken.ok() || *taken == 0) return;
+    for (std::size_t i = 0; i < *taken; ++i) {
+      const Verdict fresh = check_sample_freshness(buffer.info(i));
+      if (!fresh.ok()) {
+        counters_.rejected_goal.fetch_add(1, std::memory_order_relaxed);
+        log_.rejected("goal", fresh, platform::now_ns());
+      } else if (!receiver_.has_map()) {
+        pending_goal_ = buffer[i];
+      } else {
+        accept_goal(buffer[i]);
+      }
+    }
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::accept_goal(const grip_msg_Goal& goal) {
+  const Verdict verdict = check_goal(goal, receiver_.map());
+  if (!verdict.ok()) {
+    counters_.rejected_goal.fetch_add(1, std::memory_order_relaxed);
+    log_.rejected("goal", verdict, platform::now_ns());
+    return;
+  }
+  goals_->write(goal_from_wire(goal));
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::mark_dirty(const CellBox& box) {
+  for (int ty = box.y0 / kTileSide; ty <= box.y1 / kTileSide; ++ty) {
+    for (int tx = box.x0 / kTileSide; tx <= box.x1 / kTileSide; ++tx) {
+      const CellBox tile{tx * kTileSide, ty * kTileSide, tx * kTileSide + kTileSide - 1,
+                         ty * kTileSide + kTileSide - 1};
+      const CellBox part{std::max(box.x0, tile.x0), std::max(box.y0, tile.y0),
+                         std::min(box.x1, tile.x1), std::min(box.y1, tile.y1)};
+      dirty_[static_cast<std::size_t>(ty * tiles_x_ + tx)].add(part);
+    }
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::hand_over_tiles() {
+  // Tiles carry the receiver's map as it is now, so a tile cut later is never older; a tile
+  // the ring has no room for stays dirty and goes next time.
+  const OccupancyGrid* map = receiver_.has_map() ? &receiver_.map() : nullptr;
+  if (map == nullptr) return;
+  std::size_t pending = 0;
+  for (const CellBox& box : dirty_) pending += box.empty() ? 0U : 1U;
+  MapTile* tile = handover_tile_.get();
+  for (CellBox& box : dirty_) {
+    if (box.empty()) continue;
+    tile->box = box;
+    tile->map_sequence = receiver_.last_sequence();
+    tile->in_sync = receiver_.in_sync();
+    tile->last_of_batch = --pending == 0;
+    const int w = box.x1 - box.x0 + 1;
+    for (int y = box.y0; y <= box.y1; ++y) {
+      for (int x = box.x0; x <= box.x1; ++x) {
+        tile->cells[static_cast<std::size_t>((y - box.y0) * w + (x - box.x0))] = map->at(x, y);
+      }
+    }
+    if (!tiles_->try_push(*tile)) return;
+    box = CellBox{};
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::check_liveliness() {
+  const auto live = dds_.states.liveliness_changed();
+  if (!live.ok()) return;
+  const bool alive = live->alive_count > 0;
+  if (was_alive_ && !alive) {
+    counters_.vehicle_losses.fetch_add(1, std::memory_order_relaxed);
+    std::fprintf(stderr,
+                 "grip planner: vehicle controller lost (liveliness); planning goes on with the "
+                 "last map and state\n");
+  }
+  was_alive_ = alive;
+  counters_.vehicle_alive.store(alive, std::memory_order_relaxed);
+}
+
+// ---- Planning thread ----
+
+template <VehicleModel V>
+bool PlannerParticipantFor<V>::apply_tiles(CellBox& newly_blocked) noexcept {
+  bool applied = false;
+  bool batch_complete = false;
+  OccupancyGrid& grid = *grid_;
+  while (tiles_->try_pop(*tile_)) {
+    const MapTile& t = *tile_;
+    const int w = t.box.x1 - t.box.x0 + 1;
+    auto cells = grid.mutable_cells();
+    for (int y = t.box.y0; y <= t.box.y1; ++y) {
+      for (int x = t.box.x0; x <= t.box.x1; ++x) {
+        const Cell value = t.cells[static_cast<std::size_t>((y - t.box.y0) * w + (x - t.box.x0))];
+        Cell& cell = cells[grid.index(x, y)];
+        // Only cells that stop being free can cut the tree (retain's contract).
+        if (cell == Cell::kFree && value != Cell::kFree) newly_blocked.add(CellBox{x, y, x, y});
+        cell = value;
+      }
+    }
+    map_sequence_ = t.map_sequence;
+    map_in_sync_ = t.in_sync;
+    batch_complete = t.last_of_batch;
+    applied = true;
+  }
+  // The checksum describes a whole hand-over, not a map half way through one.
+  if (applied && batch_complete) map_checksum_ = map_checksum(grid);
+  return applied;
+}
+
+template <VehicleModel V>
+CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
+                                                  std::int64_t deadline_ns) noexcept {
+  const std::int64_t start = platform::now_ns();
+  CellBox newly_blocked;
+  if (apply_tiles(newly_blocked)) cycle_->note_newly_blocked(newly_blocked);
+  if (goals_->update()) cycle_->set_goal(goals_->read_buffer());
+  if (states_->update()) state_sequence_ = states_->read_buffer().sequence_number;
+
+  const CycleOutcome out = cycle_->run([] { return platform::now_ns(); }, deadline_ns);
+  ++cycles_;
+  const std::int64_t end = platform::now_ns();
+  misses_ += end > deadline_ns ? 1 : 0;
+
+  if (out.plan_available) {
+    // Planned during (t[i-1], t[i]) for execution from t[i], the next release.
+    PlanSlot& slot = plans_->write_buffer();
+    slot.cycle = cycles_;
+    slot.start_time_ns =
+        static_cast<std::uint64_t>(clock_.vehicle_ns(release_ns + period_wall_ns_, time_scale_));
+    state_to_wire<V>(cycle_->plan_start(), slot.start_state.data(), slot.state_dim);
+    slot.state_sequence = state_sequence_;
+    const auto& plan = cycle_->plan();
+    slot.steps = static_cast<std::uint32_t>(std::min<std::size_t>(plan.size(), slot.step.size()));
+    for (std::uint32_t i = 0; i < slot.steps; ++i) {
+      slot.step[i].control[0] = plan[i].control[0];
+      slot.step[i].control[1] = plan[i].control[1];
+      slot.step[i].duration_s = plan[i].duration_s;
+    }
+    slot.committed_monotonic_ns = static_cast<std::uint64_t>(platform::now_ns());
+    plans_->publish();
+    ++plans_committed_;
+  }
+  CycleStatus& status = statuses_->write_buffer();
+  status.cycle = cycles_;
+  status.misses = misses_;
+  status.tree_edges = out.tree_edges;
+  status.edges_added = out.edges_added;
+  status.cycle_time_s = static_cast<double>(end - start) * 1e-9;
+  status.map_sequence = map_sequence_;
+  status.map_checksum = map_checksum_;
+  status.map_in_sync = map_in_sync_;
+  statuses_->publish();
+  wakeup_.signal();
+  return out;
+}
+
+// ---- Publish thread ----
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::publish_main() {
+  while (!threads_stop_.load(std::memory_order_acquire)) {
+    static_cast<void>(wakeup_.wait(std::chrono::milliseconds(100)));
+    if (plans_->update()) publish_plan(plans_->read_buffer());
+    if (statuses_->update()) publish_status(statuses_->read_buffer());
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::publish_plan(const PlanSlot& slot) {
+  grip_msg_Plan msg{};
+  msg.cycle = slot.cycle;
+  msg.start_time_ns = slot.start_time_ns;
+  std::copy(slot.start_state.begin(), slot.start_state.end(), std::begin(msg.start_state));
+  msg.state_dim = slot.state_dim;
+  msg.state_sequence = slot.state_sequence;
+  msg.committed_monotonic_ns = slot.committed_monotonic_ns;
+  msg.kind = to_wire(V::kKind);
+  msg.contingency = contingency_of(V::kKind);
+  // Borrowed, not copied: DDS serialises during dds_write.
+  msg.steps._buffer = const_cast<grip_msg_PlanStep*>(slot.step.data());
+  msg.steps._length = slot.steps;
+  msg.steps._maximum = slot.steps;
+  msg.steps._release = false;
+  if (dds_.plans.write(msg).ok()) {
+    plans_published_.fetch_add(1, std::memory_order_relaxed);
+  } else {
+    write_failures_.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::publish_status(const CycleStatus& s) {
+  grip_msg_PlannerStatus msg{};
+  msg.cycle = s.cycle;
+  msg.stamp_ns = static_cast<std::uint64_t>(clock_.vehicle_ns(platform::now_ns(), time_scale_));
+  std::snprintf(msg.policy, sizeof msg.policy, "%s", "grip at T, contingency at T");
+  msg.misses = s.misses;
+  msg.tree_edges = s.tree_edges;
+  msg.edges_added = s.edges_added;
+  msg.cycle_time_s = s.cycle_time_s;
+  msg.rejected_vehicle_state = counters_.rejected_vehicle_state.load(std::memory_order_relaxed);
+  msg.rejected_map_update = counters_.rejected_map_update.load(std::memory_order_relaxed);
+  msg.rejected_goal = counters_.rejected_goal.load(std::memory_order_relaxed);
+  msg.map_gaps = counters_.map_gaps.load(std::memory_order_relaxed);
+  msg.map_heals = counters_.map_heals.load(std::memory_order_relaxed);
+  msg.map_sequence = s.map_sequence;
+  msg.map_checksum = s.map_checksum;
+  msg.map_in_sync = s.map_in_sync;
+  msg.plans_published = plans_published_.load(std::memory_order_relaxed);
+  msg.plans_dropped = write_failures_.load(std::memory_order_relaxed);
+  const auto matched = dds_.plans.publication_matched();
+  msg.plan_subscribers = matched.ok() ? matched->current_count : 0;
+  msg.vehicle_alive = counters_.vehicle_alive.load(std::memory_order_relaxed);
+  static_cast<void>(dds_.status.write(msg));
+}
+
+// ---- Start-up and the run ----
+
+template <VehicleModel V>
+Status PlannerParticipantFor<V>::start_up() {
+  const std::int64_t started = platform::now_ns();
+  const std::int64_t timeout = config_.startup_timeout.count();
+  std::optional<StateSample> state;
+  std::optional<GoalRegion> goal;
+  std::string refusal;
+  while (!stop_.load(std::memory_order_acquire)) {
+    if (!grid_ && geometry_ready_.load(std::memory_order_acquire)) {
+      auto grid = OccupancyGrid::create(
+          static_cast<int>(geometry_.width_cells), static_cast<int>(geometry_.height_cells),
+          geometry_.resolution_m, geometry_.origin_x_m, geometry_.origin_y_m, Cell::kUnknown);
+      if (!grid) return grid.error();
+      grid_.emplace(std::move(grid).value());
+    }
+    if (grid_) {
+      CellBox ignored;       // no tree yet
+      apply_tiles(ignored);  // this thread is the tiles' consumer until planning starts
+    }
+    if (states_->update()) state = states_->read_buffer();
+    if (goals_->update()) goal = goals_->read_buffer();
+    if (grid_ && map_in_sync_ && state && goal) {
+      if (!cycle_) {
+        if (Status s = create_cycle(state->time_scale); !s) return s;
+      }
+      Status started_cycle = cycle_->start(state_of(*state), *goal);
+      if (started_cycle.ok()) {
+        state_sequence_ = state->sequence_number;
+        return Ok{};
+      }
+      refusal = started_cycle.error().message;  // e.g. the start is not known free yet
+    }
+    if (timeout > 0 && platform::now_ns() - started > timeout) {
+      std::string missing;
+      if (!grid_ || !map_in_sync_) missing += " a map in sync,";
+      if (!state) missing += " a vehicle state,";
+      if (!goal) missing += " a goal,";
+      if (missing.empty()) missing = " a start the planner accepts (" + refusal + "),";
+      missing.pop_back();
+      return Error{ErrorCode::kIo, "start-up timed out waiting for" + missing};
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return Error{ErrorCode::kIo, "stopped during start-up"};
+}
+
+template <VehicleModel V>
+Status PlannerParticipantFor<V>::create_cycle(double time_scale) {
+  time_scale_ = time_scale;
+  const double wall_budget_ms = config_.budget_s * 1e3 / time_scale;
+  period_wall_ns_ = ns_of(config_.cycle_s / time_scale);
+  PlannerConfig planner_config;
+  // Whole fractions of T, at most 50 ms per integration step (as `grip stress`).
+  planner_config.integration_step_s = config_.cycle_s / std::ceil(config_.cycle_s / 0.05 - 1e-9);
+  planner_config.seed = config_.seed;
+  planner_config.max_edges =
+      config_.max_edges != 0
+          ? config_.max_edges
+          : static_cast<std::uint32_t>(std::clamp(400.0 * wall_budget_ms, 2000.0, 2e5));
+  planner_config.max_trajectories = planner_config.max_edges / 2;
+  CycleConfig cycle_config;
+  cycle_config.cycle_s = config_.cycle_s;
+  const double margin_ms = config_.margin_s >= 0.0 ? config_.margin_s * 1e3 / time_scale
+                                                   : std::max(2.0, wall_budget_ms / 5.0);
+  cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
+  auto cycle = ReplanningCycle<V>::create(vehicle_, *grid_, planner_config, cycle_config);
+  if (!cycle) return cycle.error();
+  cycle_.emplace(std::move(cycle).value());
+  return Ok{};
+}
+
+template <VehicleModel V>
+Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
+  if (Status s = start_up(); !s) return s.error();
+
+  PeriodicLoopConfig loop_config;
+  loop_config.period = std::chrono::nanoseconds(period_wall_ns_);
+  loop_config.budget = std::chrono::nanoseconds(ns_of(config_.budget_s / time_scale_));
+  loop_config.policy = config_.policy;
+  loop_config.lock_memory = config_.lock_memory;
+  loop_config.reference_timer = false;
+  loop_config.cycles = config_.duration_s > 0.0
+                           ? static_cast<std::uint64_t>(std::llround(
+                                 config_.duration_s * 1e9 / static_cast<double>(period_wall_ns_)))
+                           : std::numeric_limits<std::uint64_t>::max();
+  auto loop = PeriodicLoop::start(loop_config, [this](std::int64_t release, std::int64_t deadline) {
+    return cycle_body(release, deadline);
+  });
+  if (!loop) return loop.error();
+
+  PlannerParticipantReport report;
+  report.time_scale = time_scale_;
+  CycleRecord record;
+  std::int64_t next_progress = platform::now_ns();
+  while (true) {
+    if (stop_.load(std::memory_order_acquire)) (*loop)->request_stop();
+    const bool done = (*loop)->finished();
+    while ((*loop)->poll(record)) {
+      ++report.cycles;
+      report.misses += record.missed ? 1 : 0;
+      report.wake_latency.record(record.wake_latency_ns);
+      report.compute.record(record.compute_ns);
+    }
+    if (done) break;
+    if (config_.on_progress && platform::now_ns() >= next_progress) {
+      next_progress += 250'000'000;
+      config_.on_progress(progress_line(report));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const PeriodicLoopResult& result = (*loop)->join();
+  report.policy = std::string(platform::policy_name(result.planner_thread.scheduling.policy));
+  report.policy_fallback = result.planner_thread.scheduling.fallback_reason;
+  report.allocations_counted = result.allocations_counted;
+  report.heap_allocations_in_loop = result.heap_allocations_in_loop;
+  report.usage_in_loop = result.usage_in_loop;
+  report.plans_committed = plans_committed_;
+  report.plans_superseded = plans_->published() - plans_published_.load() - write_failures_.load();
+  report.plans_published = plans_published_.load();
+  report.write_failures = write_failures_.load();
+  report.rejected_vehicle_state = counters_.rejected_vehicle_state.load();
+  report.rejected_map_update = counters_.rejected_map_update.load();
+  report.rejected_goal = counters_.rejected_goal.load();
+  report.map_gaps = counters_.map_gaps.load();
+  report.map_heals = counters_.map_heals.load();
+  report.vehicle_losses = counters_.vehicle_losses.load();
+  report.map_sequence = map_sequence_;
+  report.map_checksum = map_checksum(*grid_);
+  return report;
+}
+
+template <VehicleModel V>
+std::string PlannerParticipantFor<V>::progress_line(const PlannerParticipantReport& r) const {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "cycles %llu, misses %llu, plans %llu, map seq %llu%s, rejected %llu, vehicle %s",
+                static_cast<unsigned long long>(r.cycles),
+                static_cast<unsigned long long>(r.misses),
+                static_cast<unsigned long long>(plans_published_.load()),
+                static_cast<unsigned long long>(map_sequence_), map_in_sync_ ? "" : " (healing)",
+                static_cast<unsigned long long>(counters_.rejected_vehicle_state.load() +
+                                                counters_.rejected_map_update.load() +
+                                                counters_.rejected_goal.load()),
+                counters_.vehicle_alive.load() ? "alive" : "lost");
+  return line;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<PlannerParticipant>> PlannerParticipant::create(
+    const PlannerParticipantConfig& config) {
+  return with_default_vehicle(config.robot, [&](const auto& vehicle) {
+    using V = std::remove_cvref_t<decltype(vehicle)>;
+    return PlannerParticipantFor<V>::create(config, vehicle);
+  });
+}
+
+}  // namespace grip::rt::dds

@@ -1,0 +1,49 @@
+#include "grip/rt/dds/topics.hpp"
+
+#include <algorithm>
+
+namespace grip::rt::dds {
+
+namespace {
+
+platform::dds::Qos keep_last(const LinkTiming& timing, std::int32_t depth) {
+  platform::dds::Qos qos;
+  qos.reliable = true;
+  qos.history_depth = depth;
+  qos.max_blocking_time = std::chrono::milliseconds(10);
+  qos.liveliness_lease = timing.liveliness_lease;
+  return qos;
+}
+
+// The periodic links: a peer silent for two cycles is late (DEADLINE_MISSED on both sides).
+// An offered deadline must not exceed the requested one, so a slowed-down simulation
+// (time scale < 1) offers 2 T too.
+platform::dds::Qos periodic(const LinkTiming& timing, Endpoint side) {
+  platform::dds::Qos qos = keep_last(timing, 1);
+  const auto two_cycles = 2 * timing.cycle;
+  qos.deadline =
+      side == Endpoint::kReader
+          ? two_cycles
+          : std::chrono::nanoseconds(static_cast<std::int64_t>(
+                static_cast<double>(two_cycles.count()) / std::max(1.0, timing.time_scale)));
+  return qos;
+}
+
+}  // namespace
+
+platform::dds::Qos vehicle_state_qos(const LinkTiming& timing, Endpoint side) {
+  return periodic(timing, side);
+}
+platform::dds::Qos plan_qos(const LinkTiming& timing, Endpoint side) {
+  return periodic(timing, side);
+}
+platform::dds::Qos map_update_qos(const LinkTiming& timing) { return keep_last(timing, 64); }
+platform::dds::Qos map_request_qos(const LinkTiming& timing) { return keep_last(timing, 4); }
+platform::dds::Qos goal_qos(const LinkTiming& timing) {
+  platform::dds::Qos qos = keep_last(timing, 1);
+  qos.transient_local = true;
+  return qos;
+}
+platform::dds::Qos planner_status_qos(const LinkTiming& timing) { return keep_last(timing, 1); }
+
+}  // namespace grip::rt::dds

@@ -1,0 +1,121 @@
+#include "grip/rt/dds/vehicle_link.hpp"
+
+#include <utility>
+
+namespace grip::rt::dds {
+
+namespace pdds = platform::dds;
+
+Result<std::unique_ptr<VehicleLink>> VehicleLink::create(const VehicleLinkConfig& config,
+                                                         OccupancyGrid map) {
+  auto participant = pdds::Participant::create(config.domain, config.dds_config);
+  if (!participant) return participant.error();
+  const LinkTiming& timing = config.timing;
+  auto states = pdds::Writer<grip_msg_VehicleState>::create(
+      *participant, &grip_msg_VehicleState_desc, kVehicleStateTopic,
+      vehicle_state_qos(timing, Endpoint::kWriter));
+  if (!states) return states.error();
+  auto maps = pdds::Writer<grip_msg_MapUpdate>::create(*participant, &grip_msg_MapUpdate_desc,
+                                                       kMapUpdateTopic, map_update_qos(timing));
+  if (!maps) return maps.error();
+  auto goals = pdds::Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc, kGoalTopic,
+                                                   goal_qos(timing));
+  if (!goals) return goals.error();
+  auto requests = pdds::Reader<grip_msg_MapRequest>::create(
+      *participant, &grip_msg_MapRequest_desc, kMapRequestTopic, map_request_qos(timing));
+  if (!requests) return requests.error();
+  auto plans = pdds::Reader<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, kPlanTopic,
+                                                   plan_qos(timing, Endpoint::kReader));
+  if (!plans) return plans.error();
+  auto status = pdds::Reader<grip_msg_PlannerStatus>::create(
+      *participant, &grip_msg_PlannerStatus_desc, kPlannerStatusTopic, planner_status_qos(timing));
+  if (!status) return status.error();
+  return std::unique_ptr<VehicleLink>(new VehicleLink(
+      config, std::move(map), std::move(participant).value(), std::move(states).value(),
+      std::move(maps).value(), std::move(goals).value(), std::move(requests).value(),
+      std::move(plans).value(), std::move(status).value()));
+}
+
+VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
+                         pdds::Participant participant, pdds::Writer<grip_msg_VehicleState> states,
+                         pdds::Writer<grip_msg_MapUpdate> maps, pdds::Writer<grip_msg_Goal> goals,
+                         pdds::Reader<grip_msg_MapRequest> requests,
+                         pdds::Reader<grip_msg_Plan> plans,
+                         pdds::Reader<grip_msg_PlannerStatus> status)
+    : kind_(config.kind),
+      participant_(std::move(participant)),
+      states_(std::move(states)),
+      maps_(std::move(maps)),
+      goals_(std::move(goals)),
+      requests_(std::move(requests)),
+      plans_(std::move(plans)),
+      status_(std::move(status)),
+      sender_(std::move(map)),
+      plan_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_Plan, 4>>(&grip_msg_Plan_desc)),
+      request_buffer_(
+          std::make_unique<pdds::SampleBuffer<grip_msg_MapRequest, 8>>(&grip_msg_MapRequest_desc)),
+      status_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_PlannerStatus, 4>>(
+          &grip_msg_PlannerStatus_desc)) {}
+
+Status VehicleLink::publish_state(const grip_msg_VehicleState& state) {
+  return states_.write(state);
+}
+
+Status VehicleLink::publish_goal(const grip_msg_Goal& goal) { return goals_.write(goal); }
+
+void VehicleLink::send(const grip_msg_MapUpdate& update) {
+  if (!maps_.write(update).ok()) ++map_writes_failed_;  // a gap to the planner, which heals it
+}
+
+void VehicleLink::publish_map_updates(const CellBox& box, std::uint64_t stamp_ns,
+                                      FunctionRef<bool(const grip_msg_MapUpdate&)> drop) {
+  sender_.send_updates(box, stamp_ns, [&](const grip_msg_MapUpdate& update) {
+    if (!drop(update)) send(update);
+  });
+}
+
+void VehicleLink::answer_map_requests(std::uint64_t stamp_ns) {
+  bool requested = false;
+  for (;;) {
+    const Result<std::size_t> taken = requests_.take(*request_buffer_);
+    if (!taken.ok() || *taken == 0) break;
+    requested = true;
+  }
+  if (requested) {
+    sender_.send_snapshot(stamp_ns, [&](const grip_msg_MapUpdate& update) { send(update); });
+  }
+}
+
+const grip_msg_Plan* VehicleLink::take_plan() {
+  const grip_msg_Plan* newest = nullptr;
+  for (;;) {
+    const Result<std::size_t> taken = plans_.take(*plan_buffer_);
+    if (!taken.ok() || *taken == 0) break;
+    for (std::size_t i = 0; i < *taken; ++i) {
+      if (check_plan((*plan_buffer_)[i], kind_).ok()) {
+        newest = &(*plan_buffer_)[i];
+      } else {
+        ++plans_rejected_;
+      }
+    }
+    if (newest != nullptr) break;  // the next take would reuse the buffer under it
+  }
+  return newest;
+}
+
+std::optional<grip_msg_PlannerStatus> VehicleLink::take_status() {
+  std::optional<grip_msg_PlannerStatus> newest;
+  for (;;) {
+    const Result<std::size_t> taken = status_.take(*status_buffer_);
+    if (!taken.ok() || *taken == 0) break;
+    newest = (*status_buffer_)[*taken - 1];  // plain data: a copy owns nothing
+  }
+  return newest;
+}
+
+bool VehicleLink::planner_alive() const {
+  const auto live = plans_.liveliness_changed();
+  return live.ok() && live->alive_count > 0;
+}
+
+}  // namespace grip::rt::dds
