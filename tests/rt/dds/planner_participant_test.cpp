@@ -1,0 +1,328 @@
+// The planner participant with a vehicle controller over DDS on loopback: plans arrive intact
+// and in order; the map heals after dropped updates and ends equal to the mapper's; every kind
+// of bad input is rejected and counted; a killed controller is noticed through liveliness.
+
+#include "grip/rt/dds/planner_participant.hpp"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "grip/platform/dds/reader.hpp"
+#include "grip/platform/dds/writer.hpp"
+#include "vehicle_side.hpp"
+
+extern char** environ;
+
+namespace grip::rt::dds {
+namespace {
+
+using namespace std::chrono_literals;
+using testing::VehicleSide;
+
+PlannerParticipantConfig planner_config(platform::dds::DomainId domain, double duration_s) {
+  PlannerParticipantConfig config;
+  config.domain = domain;
+  config.robot = VehicleKind::kDdVelocity;
+  config.cycle_s = 0.05;
+  config.budget_s = 0.02;
+  config.duration_s = duration_s;
+  config.startup_timeout = 20s;
+  config.lock_memory = false;  // a test does not pin the whole test binary in RAM
+  config.liveliness_lease = 500ms;
+  return config;
+}
+
+// Runs the participant on its own thread; its report (or error) is there after join().
+struct RunningPlanner {
+  std::unique_ptr<PlannerParticipant> planner;
+  std::optional<Result<PlannerParticipantReport>> result;
+  std::thread thread;
+
+  explicit RunningPlanner(const PlannerParticipantConfig& config) {
+    auto created = PlannerParticipant::create(config);
+    if (!created) {
+      result = created.error();
+      return;
+    }
+    planner = std::move(created).value();
+    thread = std::thread([this] { result = planner->run(); });
+  }
+  const Result<PlannerParticipantReport>& join() {
+    if (thread.joinable()) thread.join();
+    return *result;
+  }
+  ~RunningPlanner() {
+    if (planner) planner->request_stop();
+    if (thread.joinable()) thread.join();
+  }
+};
+
+template <typename Predicate>
+bool eventually(Predicate done, std::chrono::milliseconds timeout, VehicleSide* vehicle = nullptr) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < until) {
+    if (vehicle != nullptr) vehicle->service();
+    if (done()) return true;
+    std::this_thread::sleep_for(10ms);
+  }
+  return false;
+}
+
+TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
+  constexpr platform::dds::DomainId kDomain = 70;
+  auto vehicle = VehicleSide::create(kDomain, VehicleKind::kDdVelocity);
+  ASSERT_NE(vehicle, nullptr);
+  ASSERT_TRUE(vehicle->publish_goal());
+  RunningPlanner planner(planner_config(kDomain, 4.0));
+  ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
+
+  // The mapper changes its map while every third update is lost on the way.
+  VehicleLink& link = vehicle->link();
+  std::uint64_t dropped = 0;
+  const auto drop_every_third = [&](const grip_msg_MapUpdate& m) {
+    const bool drop = m.snapshot_id == 0 && m.sequence_number % 3 == 0;
+    dropped += drop ? 1 : 0;
+    return drop;
+  };
+  std::vector<std::uint64_t> cycles;
+  std::vector<std::uint64_t> start_times;
+  std::optional<grip_msg_PlannerStatus> status;
+  int tick = 0;
+  const auto until = std::chrono::steady_clock::now() + 30s;
+  while (!planner.result && std::chrono::steady_clock::now() < until) {
+    vehicle->service();
+    if (++tick % 10 == 0 && tick < 300) {
+      // An obstacle far from the start appears, or a cell flips: real changes, away from the
+      // vehicle so that the start stays free.
+      const int x = 200 + (tick / 10) % 80;
+      link.map().set(x, 250, (tick / 10) % 2 == 0 ? Cell::kObstacle : Cell::kFree);
+      link.publish_map_updates(CellBox{x, 250, x, 250}, static_cast<std::uint64_t>(tick),
+                               drop_every_third);
+    }
+    if (const grip_msg_Plan* plan = link.take_plan()) {
+      cycles.push_back(plan->cycle);
+      start_times.push_back(plan->start_time_ns);
+      double duration = 0.0;
+      for (std::uint32_t i = 0; i < plan->steps._length; ++i)
+        duration += plan->steps._buffer[i].duration_s;
+      EXPECT_GE(duration, 0.05 - 1e-9) << "a plan covers at least the next cycle";
+      EXPECT_EQ(plan->kind, grip_msg_DD_VELOCITY);
+    }
+    if (auto s = link.take_status()) status = s;
+    std::this_thread::sleep_for(10ms);
+  }
+  const Result<PlannerParticipantReport>& result = planner.join();
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  const PlannerParticipantReport& report = *result;
+
+  EXPECT_EQ(link.plans_rejected(), 0U);
+  ASSERT_GT(cycles.size(), 20U);
+  for (std::size_t i = 1; i < cycles.size(); ++i) {
+    EXPECT_GT(cycles[i], cycles[i - 1]) << "plans out of order";
+    EXPECT_GT(start_times[i], start_times[i - 1]);
+  }
+  EXPECT_GE(report.plans_published, cycles.size());
+  EXPECT_EQ(report.write_failures, 0U);
+
+  EXPECT_GT(dropped, 5U);
+  EXPECT_GE(report.map_gaps, 1U);
+  EXPECT_GE(report.map_heals, 1U);
+  EXPECT_EQ(report.map_checksum, map_checksum(link.map())) << "the planner's map diverged";
+  ASSERT_TRUE(status.has_value());
+  EXPECT_TRUE(status->map_in_sync);
+  EXPECT_EQ(status->map_checksum, map_checksum(link.map()));
+  EXPECT_TRUE(status->vehicle_alive);
+  EXPECT_EQ(status->plan_subscribers, 1U);
+
+  if (report.allocations_counted) {
+    EXPECT_EQ(report.heap_allocations_in_loop, 0U) << "the planning thread allocated";
+  }
+}
+
+TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
+  constexpr platform::dds::DomainId kDomain = 71;
+  auto vehicle = VehicleSide::create(kDomain, VehicleKind::kDdVelocity);
+  ASSERT_NE(vehicle, nullptr);
+  ASSERT_TRUE(vehicle->publish_goal());
+  RunningPlanner planner(planner_config(kDomain, 0.0));
+  ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
+  VehicleLink& link = vehicle->link();
+  std::optional<grip_msg_PlannerStatus> status;
+  const auto latest = [&] {
+    if (auto s = link.take_status()) status = s;
+    return status.has_value();
+  };
+  ASSERT_TRUE(eventually(latest, 20000ms, vehicle.get())) << "the planner never started";
+
+  // A second writer of each topic, for what VehicleLink would never send.
+  auto participant = platform::dds::Participant::create(kDomain).value();
+  const LinkTiming timing;
+  auto states = platform::dds::Writer<grip_msg_VehicleState>::create(
+                    participant, &grip_msg_VehicleState_desc, kVehicleStateTopic,
+                    vehicle_state_qos(timing, Endpoint::kWriter))
+                    .value();
+  auto maps = platform::dds::Writer<grip_msg_MapUpdate>::create(
+                  participant, &grip_msg_MapUpdate_desc, kMapUpdateTopic, map_update_qos(timing))
+                  .value();
+  auto goals = platform::dds::Writer<grip_msg_Goal>::create(participant, &grip_msg_Goal_desc,
+                                                            kGoalTopic, goal_qos(timing))
+                   .value();
+
+  // Sends one bad sample and waits until the status counts it: one at a time, so that a
+  // keep-last-1 reader cannot lose one behind another.
+  const auto rejected = [&](std::uint64_t grip_msg_PlannerStatus::*counter, auto&& send) {
+    ASSERT_TRUE(latest());
+    const std::uint64_t before = (*status).*counter;
+    send();
+    EXPECT_TRUE(eventually([&] { return latest() && (*status).*counter == before + 1; }, 5000ms))
+        << "not counted";
+  };
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto bad_state = [&](auto&& mutate, std::optional<dds_time_t> at = std::nullopt) {
+    grip_msg_VehicleState msg = vehicle->state();
+    msg.stamp_ns += 1'000'000'000;  // newer than any good one so far
+    mutate(msg);
+    if (at) {
+      ASSERT_TRUE(states.write_at(msg, *at).ok());
+    } else {
+      ASSERT_TRUE(states.write(msg).ok());
+    }
+  };
+  using S = grip_msg_PlannerStatus;
+  rejected(&S::rejected_vehicle_state, [&] { bad_state([&](auto& m) { m.state[0] = nan; }); });
+  rejected(&S::rejected_vehicle_state, [&] {
+    bad_state([](auto& m) {
+      const std::int32_t raw = 42;
+      std::memcpy(&m.kind, &raw, sizeof raw);
+    });
+  });
+  rejected(&S::rejected_vehicle_state, [&] { bad_state([](auto& m) { m.kind = grip_msg_CAR; }); });
+  rejected(&S::rejected_vehicle_state, [&] { bad_state([](auto& m) { m.state_dim = 5; }); });
+  rejected(&S::rejected_vehicle_state,
+           [&] { bad_state([](auto&) {}, dds_time() + DDS_SECS(60)); });  // from the future
+  rejected(&S::rejected_vehicle_state,
+           [&] { bad_state([](auto&) {}, dds_time() - DDS_SECS(60)); });  // long ago
+  rejected(&S::rejected_vehicle_state, [&] { bad_state([](auto& m) { m.stamp_ns = 1; }); });
+
+  grip_msg_MapUpdate patch{};
+  link.map_sender();  // geometry of the real map
+  std::vector<std::uint8_t> cells(16, grip_msg_kCellFree);
+  const auto bad_patch = [&](auto&& mutate) {
+    patch = grip_msg_MapUpdate{};
+    patch.sequence_number = 1'000'000;
+    const MapGeometry g = geometry_of(link.map());
+    patch.map_width_cells = g.width_cells;
+    patch.map_height_cells = g.height_cells;
+    patch.resolution_m = g.resolution_m;
+    patch.map_origin_x_m = g.origin_x_m;
+    patch.map_origin_y_m = g.origin_y_m;
+    patch.origin_x_cell = 10;
+    patch.origin_y_cell = 10;
+    patch.width_cells = 4;
+    patch.height_cells = 4;
+    patch.cells._buffer = cells.data();
+    patch.cells._length = 16;
+    patch.cells._maximum = 16;
+    mutate(patch);
+    ASSERT_TRUE(maps.write(patch).ok());
+  };
+  rejected(&S::rejected_map_update, [&] { bad_patch([](auto& m) { m.origin_x_cell = 299; }); });
+  rejected(&S::rejected_map_update, [&] { bad_patch([](auto& m) { m.cells._length = 15; }); });
+  rejected(&S::rejected_map_update, [&] { bad_patch([](auto& m) { m.resolution_m = nan; }); });
+  rejected(&S::rejected_map_update, [&] { bad_patch([](auto& m) { m.map_width_cells = 301; }); });
+  rejected(&S::rejected_map_update, [&] { bad_patch([&](auto&) { cells[3] = 7; }); });
+
+  const auto bad_goal = [&](double x, double y, double r) {
+    grip_msg_Goal goal{};
+    goal.x_m = x;
+    goal.y_m = y;
+    goal.radius_m = r;
+    ASSERT_TRUE(goals.write(goal).ok());
+  };
+  rejected(&S::rejected_goal, [&] { bad_goal(nan, 5.0, 1.0); });
+  rejected(&S::rejected_goal, [&] { bad_goal(5.0, 5.0, -1.0); });
+  rejected(&S::rejected_goal, [&] { bad_goal(500.0, 5.0, 1.0); });
+
+  // None of it disturbed the planner: its map still equals the mapper's and it still plans.
+  const std::uint64_t cycle = status->cycle;
+  EXPECT_TRUE(
+      eventually([&] { return latest() && status->cycle > cycle + 5; }, 5000ms, vehicle.get()));
+  EXPECT_TRUE(status->map_in_sync);
+  EXPECT_EQ(status->map_checksum, map_checksum(link.map()));
+  EXPECT_EQ(status->map_gaps, 0U) << "a rejected update is not a gap";
+  planner.planner->request_stop();
+  const Result<PlannerParticipantReport>& result = planner.join();
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  EXPECT_EQ(result->rejected_vehicle_state, 7U);
+  EXPECT_EQ(result->rejected_map_update, 5U);
+  EXPECT_EQ(result->rejected_goal, 3U);
+}
+
+TEST(PlannerParticipant, AKilledControllerIsNoticedThroughLiveliness) {
+  constexpr platform::dds::DomainId kDomain = 72;
+  std::string program = GRIP_BINARY_DIR "/bin/grip_vehicle_controller_probe";
+  ASSERT_EQ(access(program.c_str(), X_OK), 0) << program;
+  std::string domain = std::to_string(kDomain);
+  std::vector<char*> argv{program.data(), domain.data(), nullptr};
+
+  // The planner's status, watched from here.
+  auto participant = platform::dds::Participant::create(kDomain).value();
+  auto status_reader = platform::dds::Reader<grip_msg_PlannerStatus>::create(
+                           participant, &grip_msg_PlannerStatus_desc, kPlannerStatusTopic,
+                           planner_status_qos(LinkTiming{}))
+                           .value();
+  platform::dds::SampleBuffer<grip_msg_PlannerStatus, 4> buffer(&grip_msg_PlannerStatus_desc);
+  std::optional<grip_msg_PlannerStatus> status;
+  const auto latest = [&] {
+    auto taken = status_reader.take(buffer);
+    if (taken.ok() && *taken > 0) status = buffer[*taken - 1];
+    return status.has_value();
+  };
+
+  RunningPlanner planner(planner_config(kDomain, 0.0));
+  ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
+  pid_t child = 0;
+  ASSERT_EQ(posix_spawn(&child, program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  struct Reaper {
+    pid_t pid;
+    ~Reaper() {
+      kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+    }
+  } reaper{child};
+
+  ASSERT_TRUE(eventually(
+      [&] { return latest() && status->vehicle_alive && status->plan_subscribers == 1; }, 20000ms))
+      << "the controller process never came up";
+  kill(child, SIGKILL);
+  const auto killed = std::chrono::steady_clock::now();
+  EXPECT_TRUE(eventually(
+      [&] { return latest() && !status->vehicle_alive && status->plan_subscribers == 0; }, 5000ms))
+      << "the controller's loss went unnoticed";
+  const auto noticed = std::chrono::steady_clock::now() - killed;
+  // The planner goes on planning on its last map.
+  const std::uint64_t cycle = status->cycle;
+  EXPECT_TRUE(eventually([&] { return latest() && status->cycle > cycle + 5; }, 5000ms));
+  planner.planner->request_stop();
+  const Result<PlannerParticipantReport>& result = planner.join();
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  EXPECT_EQ(result->vehicle_losses, 1U);
+  RecordProperty(
+      "loss_noticed_ms",
+      std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(noticed).count()));
+}
+
+}  // namespace
+}  // namespace grip::rt::dds
