@@ -9,5 +9,8 @@ void register_scene_command(CLI::App& app);
 void register_plan_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_stress_command(CLI::App& app);
+void register_planner_command(CLI::App& app);
+// Benchmarks under `grip bench` besides `paper`.
+void register_bench_dds_command(CLI::App* bench);
 
 }  // namespace grip::tools

@@ -229,6 +229,8 @@ class PlannerParticipantFor final : public PlannerParticipant {
   ReceiveCounters counters_;
   VehicleClock clock_;
   std::atomic<std::uint64_t> plans_published_{0};
+  std::string publish_policy_;  // written by the publish thread before publish_policy_set_
+  std::atomic<bool> publish_policy_set_{false};
   std::atomic<std::uint64_t> write_failures_{0};
 
   // Planning thread only (after start-up).
@@ -236,7 +238,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   std::optional<ReplanningCycle<V>> cycle_;
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
   double time_scale_ = 1.0;
-  std::int64_t period_wall_ns_ = 0;
+  std::atomic<std::int64_t> period_wall_ns_{0};  // set at start-up, read by the publish thread
   std::uint64_t state_sequence_ = 0;
   std::uint64_t cycles_ = 0;
   std::uint64_t misses_ = 0;
@@ -539,8 +541,8 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
     // Planned during (t[i-1], t[i]) for execution from t[i], the next release.
     PlanSlot& slot = plans_->write_buffer();
     slot.cycle = cycles_;
-    slot.start_time_ns =
-        static_cast<std::uint64_t>(clock_.vehicle_ns(release_ns + period_wall_ns_, time_scale_));
+    slot.start_time_ns = static_cast<std::uint64_t>(clock_.vehicle_ns(
+        release_ns + period_wall_ns_.load(std::memory_order_relaxed), time_scale_));
     state_to_wire<V>(cycle_->plan_start(), slot.start_state.data(), slot.state_dim);
     slot.state_sequence = state_sequence_;
     const auto& plan = cycle_->plan();
@@ -572,6 +574,15 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
 
 template <VehicleModel V>
 void PlannerParticipantFor<V>::publish_main() {
+  // A plan is worth most when fresh: the publish thread takes a low SCHED_FIFO priority where
+  // the machine grants one, so that it is not queued behind ordinary work when a plan is ready.
+  // Refused (no CAP_SYS_NICE), it stays SCHED_OTHER; the report says which.
+  platform::SchedulingRequest request;
+  request.request = platform::PolicyRequest::kFifo;
+  request.fifo_priority = 10;
+  const auto applied = platform::apply_scheduling(request);
+  publish_policy_ = applied.ok() ? "fifo" : "other (" + applied.error().message + ")";
+  publish_policy_set_.store(true, std::memory_order_release);
   while (!threads_stop_.load(std::memory_order_acquire)) {
     static_cast<void>(wakeup_.wait(std::chrono::milliseconds(100)));
     if (plans_->update()) publish_plan(plans_->read_buffer());
@@ -680,7 +691,7 @@ template <VehicleModel V>
 Status PlannerParticipantFor<V>::create_cycle(double time_scale) {
   time_scale_ = time_scale;
   const double wall_budget_ms = config_.budget_s * 1e3 / time_scale;
-  period_wall_ns_ = ns_of(config_.cycle_s / time_scale);
+  period_wall_ns_.store(ns_of(config_.cycle_s / time_scale), std::memory_order_relaxed);
   PlannerConfig planner_config;
   // Whole fractions of T, at most 50 ms per integration step (as `grip stress`).
   planner_config.integration_step_s = config_.cycle_s / std::ceil(config_.cycle_s / 0.05 - 1e-9);
@@ -706,14 +717,15 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
   if (Status s = start_up(); !s) return s.error();
 
   PeriodicLoopConfig loop_config;
-  loop_config.period = std::chrono::nanoseconds(period_wall_ns_);
+  const std::int64_t period_wall = period_wall_ns_.load(std::memory_order_relaxed);
+  loop_config.period = std::chrono::nanoseconds(period_wall);
   loop_config.budget = std::chrono::nanoseconds(ns_of(config_.budget_s / time_scale_));
   loop_config.policy = config_.policy;
   loop_config.lock_memory = config_.lock_memory;
   loop_config.reference_timer = false;
   loop_config.cycles = config_.duration_s > 0.0
                            ? static_cast<std::uint64_t>(std::llround(
-                                 config_.duration_s * 1e9 / static_cast<double>(period_wall_ns_)))
+                                 config_.duration_s * 1e9 / static_cast<double>(period_wall)))
                            : std::numeric_limits<std::uint64_t>::max();
   auto loop = PeriodicLoop::start(loop_config, [this](std::int64_t release, std::int64_t deadline) {
     return cycle_body(release, deadline);
@@ -743,6 +755,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
   const PeriodicLoopResult& result = (*loop)->join();
   report.policy = std::string(platform::policy_name(result.planner_thread.scheduling.policy));
   report.policy_fallback = result.planner_thread.scheduling.fallback_reason;
+  if (publish_policy_set_.load(std::memory_order_acquire)) report.publish_policy = publish_policy_;
   report.allocations_counted = result.allocations_counted;
   report.heap_allocations_in_loop = result.heap_allocations_in_loop;
   report.usage_in_loop = result.usage_in_loop;

@@ -30,10 +30,15 @@ Result<std::unique_ptr<VehicleLink>> VehicleLink::create(const VehicleLinkConfig
   auto status = pdds::Reader<grip_msg_PlannerStatus>::create(
       *participant, &grip_msg_PlannerStatus_desc, kPlannerStatusTopic, planner_status_qos(timing));
   if (!status) return status.error();
+  auto waitset = pdds::WaitSet::create(*participant);
+  if (!waitset) return waitset.error();
+  for (const dds_entity_t reader : {plans->get(), requests->get()}) {
+    if (Status s = waitset->attach_data_available(reader); !s) return s.error();
+  }
   return std::unique_ptr<VehicleLink>(new VehicleLink(
       config, std::move(map), std::move(participant).value(), std::move(states).value(),
       std::move(maps).value(), std::move(goals).value(), std::move(requests).value(),
-      std::move(plans).value(), std::move(status).value()));
+      std::move(plans).value(), std::move(status).value(), std::move(waitset).value()));
 }
 
 VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
@@ -41,7 +46,7 @@ VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
                          pdds::Writer<grip_msg_MapUpdate> maps, pdds::Writer<grip_msg_Goal> goals,
                          pdds::Reader<grip_msg_MapRequest> requests,
                          pdds::Reader<grip_msg_Plan> plans,
-                         pdds::Reader<grip_msg_PlannerStatus> status)
+                         pdds::Reader<grip_msg_PlannerStatus> status, pdds::WaitSet waitset)
     : kind_(config.kind),
       participant_(std::move(participant)),
       states_(std::move(states)),
@@ -50,6 +55,7 @@ VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
       requests_(std::move(requests)),
       plans_(std::move(plans)),
       status_(std::move(status)),
+      waitset_(std::move(waitset)),
       sender_(std::move(map)),
       plan_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_Plan, 4>>(&grip_msg_Plan_desc)),
       request_buffer_(
@@ -101,6 +107,10 @@ const grip_msg_Plan* VehicleLink::take_plan() {
     if (newest != nullptr) break;  // the next take would reuse the buffer under it
   }
   return newest;
+}
+
+void VehicleLink::wait_for_plan_or_request(std::chrono::nanoseconds timeout) {
+  static_cast<void>(waitset_.wait(timeout));
 }
 
 std::optional<grip_msg_PlannerStatus> VehicleLink::take_status() {

@@ -58,6 +58,7 @@ struct PlannerParticipantConfig {
 struct PlannerParticipantReport {
   std::string policy;           // the planning thread's scheduling policy
   std::string policy_fallback;  // why a stronger policy was refused, empty if none
+  std::string publish_policy;   // the publish thread's: "fifo", or "other (why)"
   double time_scale = 1.0;
   std::uint64_t cycles = 0;
   std::uint64_t misses = 0;

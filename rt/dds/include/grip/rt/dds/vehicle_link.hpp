@@ -13,6 +13,7 @@
 #include "grip/common/result.hpp"
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/dds/reader.hpp"
+#include "grip/platform/dds/waitset.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "grip/rt/dds/map_sync.hpp"
 #include "grip/rt/dds/topics.hpp"
@@ -47,6 +48,8 @@ class VehicleLink {
 
   // The newest valid plan received since the last call, if any; invalid plans are counted.
   const grip_msg_Plan* take_plan();
+  // Sleeps until a plan or a map request arrives, or `timeout` passes (whichever first).
+  void wait_for_plan_or_request(std::chrono::nanoseconds timeout);
   std::optional<grip_msg_PlannerStatus> take_status();
 
   OccupancyGrid& map() noexcept { return sender_.map(); }
@@ -67,7 +70,7 @@ class VehicleLink {
               platform::dds::Writer<grip_msg_Goal> goals,
               platform::dds::Reader<grip_msg_MapRequest> requests,
               platform::dds::Reader<grip_msg_Plan> plans,
-              platform::dds::Reader<grip_msg_PlannerStatus> status);
+              platform::dds::Reader<grip_msg_PlannerStatus> status, platform::dds::WaitSet waitset);
   void send(const grip_msg_MapUpdate& update);
 
   VehicleKind kind_;
@@ -78,6 +81,7 @@ class VehicleLink {
   platform::dds::Reader<grip_msg_MapRequest> requests_;
   platform::dds::Reader<grip_msg_Plan> plans_;
   platform::dds::Reader<grip_msg_PlannerStatus> status_;
+  platform::dds::WaitSet waitset_;
   MapSender sender_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_Plan, 4>> plan_buffer_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_MapRequest, 8>> request_buffer_;

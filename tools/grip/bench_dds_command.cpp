@@ -1,0 +1,299 @@
+// `grip bench dds`: plan delivery latency from the planner to its subscriber over loopback,
+// against Cyclone's own ddsperf ping-pong with a payload of the plans' size, in one run.
+//
+// Ours: `grip planner` runs as a child process (its own Cyclone instance, so samples cross the
+// loopback interface); this process is the vehicle side (state, map, goal) and takes the plans.
+// The latency of a plan is the time from its commit on the planning thread
+// (committed_monotonic_ns, CLOCK_MONOTONIC, shared by processes of one machine) to its take
+// here: the planner's hand-off to its publish thread, serialisation, loopback, delivery.
+// ddsperf: `ddsperf pong` and `ddsperf ping 100Hz size S`, two processes on the same loopback
+// configuration; ddsperf reports half the round trip, a one-way figure like ours.
+// A benchmark: it measures and prints, it asserts nothing.
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fcntl.h>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "commands.hpp"
+#include "grip/platform/clock.hpp"
+#include "grip/platform/dds/participant.hpp"
+#include "grip/rt/dds/vehicle_link.hpp"
+#include "grip/rt/latency_histogram.hpp"
+#include "grip/scenes/scenes.hpp"
+
+extern char** environ;
+
+namespace grip::tools {
+
+namespace {
+
+struct BenchDdsOptions {
+  double duration_s = 30.0;
+  unsigned domain = 90;  // ddsperf uses domain + 1
+  std::string json;
+};
+
+// A child process, killed and reaped when it goes out of scope.
+class Child {
+ public:
+  static Result<Child> spawn(std::vector<std::string> args,
+                             const std::vector<std::string>& env_extra,
+                             const std::string& stdout_path) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    std::vector<std::string> env_strings(env_extra);
+    for (char** e = environ; *e != nullptr; ++e) env_strings.emplace_back(*e);
+    std::vector<char*> envp;
+    for (auto& e : env_strings) envp.push_back(e.data());
+    envp.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (!stdout_path.empty()) {
+      posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_path.c_str(),
+                                       O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    }
+    pid_t pid = 0;
+    const int rc = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) return Error{ErrorCode::kIo, "cannot start " + args[0] + ": " + std::strerror(rc)};
+    return Child(pid);
+  }
+  Child(Child&& other) noexcept : pid_(other.pid_) { other.pid_ = 0; }
+  Child& operator=(Child&&) = delete;
+  ~Child() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+  }
+  // Waits for the child to exit by itself; its exit status.
+  int wait() {
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = 0;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+
+ private:
+  explicit Child(pid_t pid) : pid_(pid) {}
+  pid_t pid_;
+};
+
+nlohmann::json summary_us(const rt::LatencyHistogram& h) {
+  const auto us = [](std::int64_t ns) { return static_cast<double>(ns) / 1e3; };
+  return {{"count", h.count()},
+          {"p50", us(h.percentile(0.5))},
+          {"p90", us(h.percentile(0.9))},
+          {"p99", us(h.percentile(0.99))},
+          {"max", us(h.max())}};
+}
+
+struct PlannerSide {
+  rt::LatencyHistogram latency;
+  double mean_plan_bytes = 0.0;
+  std::uint64_t plans = 0;
+};
+
+// The vehicle side of the planner run: a dd-vel robot at rest at the start of "rooms".
+Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
+  Scene scene = make_scene("rooms").value();
+  rt::dds::VehicleLinkConfig config;
+  config.domain = o.domain;
+  config.kind = VehicleKind::kDdVelocity;
+  auto link = rt::dds::VehicleLink::create(config, scene.grid);
+  if (!link) return link.error();
+  char self[4096] = {};
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) return Error{ErrorCode::kIo, "cannot find the grip executable (/proc/self/exe)"};
+  auto planner = Child::spawn({std::string(self, static_cast<std::size_t>(n)), "planner", "--robot",
+                               "dd-vel", "--domain", std::to_string(o.domain), "--duration",
+                               std::to_string(o.duration_s), "--startup-timeout", "30"},
+                              {}, "/dev/null");
+  if (!planner) return planner.error();
+
+  grip_msg_Goal goal{};
+  goal.x_m = scene.goal_x_m;
+  goal.y_m = scene.goal_y_m;
+  goal.radius_m = scene.goal_radius_m;
+  if (Status s = (*link)->publish_goal(goal); !s) return s.error();
+  PlannerSide out;
+  double bytes = 0.0;
+  std::uint64_t sequence = 0;
+  const auto until =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(o.duration_s + 35.0);
+  std::int64_t next_state = platform::now_ns();
+  bool seen_plans = false;
+  while (std::chrono::steady_clock::now() < until) {
+    const std::int64_t now = platform::now_ns();
+    if (now >= next_state) {
+      grip_msg_VehicleState state{};
+      state.stamp_ns = static_cast<std::uint64_t>(now);
+      state.sequence_number = ++sequence;
+      state.kind = grip_msg_DD_VELOCITY;
+      state.state[0] = scene.start_x_m;
+      state.state[1] = scene.start_y_m;
+      state.state[2] = scene.start_theta_rad;
+      state.state_dim = 3;
+      state.time_scale = 1.0;
+      static_cast<void>((*link)->publish_state(state));
+      (*link)->answer_map_requests(static_cast<std::uint64_t>(now));
+      next_state = now + 50'000'000;
+    }
+    if (const grip_msg_Plan* plan = (*link)->take_plan()) {
+      out.latency.record(platform::now_ns() -
+                         static_cast<std::int64_t>(plan->committed_monotonic_ns));
+      bytes += static_cast<double>(sizeof(grip_msg_Plan) - sizeof(plan->steps) + 4 +
+                                   plan->steps._length * sizeof(grip_msg_PlanStep));
+      ++out.plans;
+      seen_plans = true;
+    } else if (seen_plans && !(*link)->planner_alive()) {
+      break;  // the planner finished its duration
+    }
+    // Woken by the plan's arrival, as a controller would be (ddsperf waits the same way).
+    (*link)->wait_for_plan_or_request(std::chrono::nanoseconds(
+        std::clamp<std::int64_t>(next_state - platform::now_ns(), 0, 50'000'000)));
+  }
+  if (out.plans == 0) return Error{ErrorCode::kIo, "no plan arrived from the planner"};
+  out.mean_plan_bytes = bytes / static_cast<double>(out.plans);
+  return out;
+}
+
+struct DdsperfSide {
+  std::vector<double> p50_us, p90_us, p99_us, max_us;
+  std::uint64_t count = 0;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+Result<DdsperfSide> measure_ddsperf(const BenchDdsOptions& o, std::size_t payload_bytes) {
+  const std::string config_path = "/tmp/grip-bench-dds-" + std::to_string(getpid()) + ".xml";
+  {
+    std::ofstream config(config_path);
+    config << platform::dds::loopback_config();
+    if (!config) return Error{ErrorCode::kIo, "cannot write " + config_path};
+  }
+  const std::vector<std::string> env{"CYCLONEDDS_URI=file://" + config_path};
+  const std::string domain = std::to_string(o.domain + 1);
+  const std::string duration = std::to_string(static_cast<int>(o.duration_s) + 2);
+  const std::string ping_out = config_path + ".ping.txt";
+  auto pong =
+      Child::spawn({"ddsperf", "-i", domain, "-D", duration, "pong", "waitset"}, env, "/dev/null");
+  if (!pong) return pong.error();
+  auto ping =
+      Child::spawn({"ddsperf", "-i", domain, "-D", std::to_string(static_cast<int>(o.duration_s)),
+                    "ping", "100Hz", "size", std::to_string(payload_bytes), "waitset"},
+                   env, ping_out);
+  if (!ping) return ping.error();
+  ping->wait();
+  std::ifstream in(ping_out);
+  DdsperfSide out;
+  std::string line;
+  // "[pid] 3.000  host:pid size 2048 mean 131us min 86us 50% 130us 90% 148us 99% 161us max 161us
+  // cnt 20"
+  while (std::getline(in, line)) {
+    const auto field = [&](const std::string& key) -> double {
+      const auto at = line.find(" " + key + " ");
+      return at == std::string::npos ? -1.0 : std::atof(line.c_str() + at + key.size() + 2);
+    };
+    if (field("50%") < 0.0 || field("99%") < 0.0) continue;
+    out.p50_us.push_back(field("50%"));
+    out.p90_us.push_back(field("90%"));
+    out.p99_us.push_back(field("99%"));
+    out.max_us.push_back(field("max"));
+    out.count += static_cast<std::uint64_t>(field("cnt"));
+  }
+  std::remove(ping_out.c_str());
+  std::remove(config_path.c_str());
+  // The first window includes discovery; it is not steady state.
+  if (out.p99_us.size() > 1) {
+    for (auto* v : {&out.p50_us, &out.p90_us, &out.p99_us, &out.max_us}) v->erase(v->begin());
+  }
+  if (out.p99_us.empty())
+    return Error{ErrorCode::kIo, "ddsperf reported no latency (is cyclonedds-tools installed?)"};
+  return out;
+}
+
+int run_bench_dds(const BenchDdsOptions& o) {
+  std::cerr << "grip bench dds: planner -> subscriber for " << o.duration_s << " s ...\n";
+  auto ours = measure_planner(o);
+  if (!ours) {
+    std::cerr << "grip bench dds: " << ours.error().message << "\n";
+    return 1;
+  }
+  const auto payload = static_cast<std::size_t>(ours->mean_plan_bytes);
+  std::cerr << "grip bench dds: ddsperf ping-pong, " << payload << " bytes, for " << o.duration_s
+            << " s ...\n";
+  auto ddsperf = measure_ddsperf(o, payload);
+  if (!ddsperf) {
+    std::cerr << "grip bench dds: " << ddsperf.error().message << "\n";
+    return 1;
+  }
+  const auto us = [](std::int64_t ns) { return static_cast<double>(ns) / 1e3; };
+  const double our_p99 = us(ours->latency.percentile(0.99));
+  const double their_p99 = median(ddsperf->p99_us);
+  std::printf(
+      "plan delivery, planner -> subscriber (%llu plans, mean %zu bytes):\n"
+      "  p50 %.1f us, p90 %.1f us, p99 %.1f us, max %.1f us\n"
+      "ddsperf ping-pong one-way (%llu round trips, %zu bytes, per-second windows, median):\n"
+      "  p50 %.1f us, p90 %.1f us, p99 %.1f us; worst window max %.1f us\n"
+      "p99 ratio planner / ddsperf: %.2f (target <= 1.5)\n",
+      static_cast<unsigned long long>(ours->plans), payload, us(ours->latency.percentile(0.5)),
+      us(ours->latency.percentile(0.9)), our_p99, us(ours->latency.max()),
+      static_cast<unsigned long long>(ddsperf->count), payload, median(ddsperf->p50_us),
+      median(ddsperf->p90_us), their_p99,
+      *std::max_element(ddsperf->max_us.begin(), ddsperf->max_us.end()), our_p99 / their_p99);
+  if (!o.json.empty()) {
+    nlohmann::json j;
+    j["planner"] = summary_us(ours->latency);
+    j["planner"]["mean_plan_bytes"] = ours->mean_plan_bytes;
+    j["ddsperf"] = {{"payload_bytes", payload},
+                    {"round_trips", ddsperf->count},
+                    {"p50_us_median", median(ddsperf->p50_us)},
+                    {"p90_us_median", median(ddsperf->p90_us)},
+                    {"p99_us_median", their_p99},
+                    {"p99_us_per_second", ddsperf->p99_us}};
+    j["p99_ratio"] = our_p99 / their_p99;
+    j["duration_s"] = o.duration_s;
+    std::ofstream out(o.json);
+    out << j.dump(2) << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_bench_dds_command(CLI::App* bench) {
+  auto o = std::make_shared<BenchDdsOptions>();
+  CLI::App* cmd = bench->add_subcommand(
+      "dds", "Plan delivery latency planner -> subscriber on loopback, against ddsperf ping-pong");
+  cmd->add_option("--duration", o->duration_s, "Seconds of each measurement")
+      ->capture_default_str();
+  cmd->add_option("--domain", o->domain, "DDS domain of the planner run (ddsperf uses the next)")
+      ->capture_default_str();
+  cmd->add_option("--json", o->json, "Write the figures as JSON here");
+  cmd->callback([o]() {
+    if (const int rc = run_bench_dds(*o); rc != 0) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace grip::tools
