@@ -46,6 +46,7 @@ struct BenchDdsOptions {
   double duration_s = 30.0;
   unsigned domain = 90;  // ddsperf uses domain + 1
   std::string json;
+  std::string planner_report;  // the planner child's own report (allocations, misses)
 };
 
 // A child process, killed and reaped when it goes out of scope.
@@ -169,6 +170,7 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
     (*link)->wait_for_plan_or_request(std::chrono::nanoseconds(
         std::clamp<std::int64_t>(next_state - platform::now_ns(), 0, 50'000'000)));
   }
+  planner->wait();  // it ends after its duration, having written its report
   if (out.plans == 0) return Error{ErrorCode::kIo, "no plan arrived from the planner"};
   out.mean_plan_bytes = bytes / static_cast<double>(out.plans);
   return out;
@@ -291,6 +293,8 @@ void register_bench_dds_command(CLI::App* bench) {
   cmd->add_option("--domain", o->domain, "DDS domain of the planner run (ddsperf uses the next)")
       ->capture_default_str();
   cmd->add_option("--json", o->json, "Write the figures as JSON here");
+  cmd->add_option("--planner-report", o->planner_report,
+                  "Have the planner process write its report here (allocations, misses)");
   cmd->callback([o]() {
     if (const int rc = run_bench_dds(*o); rc != 0) throw CLI::RuntimeError(rc);
   });
