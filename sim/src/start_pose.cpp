@@ -135,17 +135,14 @@ Status check_start(const LoadedMap& map, const Footprint& footprint, const Start
                           " puts the chassis across the edge of the map");
 }
 
-Result<StartPose> choose_start(const LoadedMap& map, const Footprint& footprint, double margin_m) {
-  if (!std::isfinite(margin_m) || margin_m < 0.0) {
-    return invalid_argument("start margin_m must be a finite number >= 0 (got " +
-                            number_text(margin_m) + ")");
-  }
-  const OccupancyGrid& grid = map.grid;
-  auto clearance = ClearanceMap::create_for(grid);
-  if (!clearance) return clearance.error();
-  const double needed = footprint.circumscribed_radius() + margin_m;
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+// The start cell for clearance `needed` (see choose_start), or kNone when no cell has it.
+std::uint32_t best_start_cell(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                              double needed) {
   const std::uint32_t n = grid.cell_count();
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> component(n, kNone);
   std::vector<std::uint32_t> stack;
   std::uint32_t best_root = kNone;
@@ -153,7 +150,7 @@ Result<StartPose> choose_start(const LoadedMap& map, const Footprint& footprint,
   std::uint32_t best_cell = kNone;
   // Components in index order (bottom row first), so ties keep the first one found.
   for (std::uint32_t seed = 0; seed < n; ++seed) {
-    if (component[seed] != kNone || clearance->clearance_m(seed) < needed) continue;
+    if (component[seed] != kNone || clearance.clearance_m(seed) < needed) continue;
     std::uint32_t size = 0;
     std::uint32_t nearest = seed;
     double nearest_d2 = std::numeric_limits<double>::infinity();
@@ -176,7 +173,7 @@ Result<StartPose> choose_start(const LoadedMap& map, const Footprint& footprint,
         const int ny = y + d[1];
         if (!grid.in_bounds(nx, ny)) continue;
         const std::uint32_t j = grid.index(nx, ny);
-        if (component[j] != kNone || clearance->clearance_m(j) < needed) continue;
+        if (component[j] != kNone || clearance.clearance_m(j) < needed) continue;
         component[j] = seed;
         stack.push_back(j);
       }
@@ -187,15 +184,31 @@ Result<StartPose> choose_start(const LoadedMap& map, const Footprint& footprint,
       best_cell = nearest;
     }
   }
-  if (best_root == kNone) {
-    return invalid_argument(map.path + ": no place on the map where the chassis fits in every " +
-                            "heading: that needs " + number_text(needed) +
-                            " m from every obstacle and the map's edge (circumscribed radius " +
-                            number_text(footprint.circumscribed_radius()) + " m + margin " +
-                            number_text(margin_m) + " m)");
+  return best_root == kNone ? kNone : best_cell;
+}
+
+}  // namespace
+
+Result<StartPose> choose_start(const LoadedMap& map, const Footprint& footprint, double margin_m) {
+  if (!std::isfinite(margin_m) || margin_m < 0.0) {
+    return invalid_argument("start margin_m must be a finite number >= 0 (got " +
+                            number_text(margin_m) + ")");
   }
-  return StartPose{grid.cell_center_x(grid.cell_x(best_cell)),
-                   grid.cell_center_y(grid.cell_y(best_cell)), 0.0};
+  const OccupancyGrid& grid = map.grid;
+  auto clearance = ClearanceMap::create_for(grid);
+  if (!clearance) return clearance.error();
+  // Small arenas (a TurtleBot sandbox) may not hold the full margin: halve it, then drop it.
+  for (const double margin : {margin_m, 0.5 * margin_m, 0.25 * margin_m, 0.0}) {
+    const std::uint32_t cell =
+        best_start_cell(grid, *clearance, footprint.circumscribed_radius() + margin);
+    if (cell != kNone) {
+      return StartPose{grid.cell_center_x(grid.cell_x(cell)), grid.cell_center_y(grid.cell_y(cell)),
+                       0.0};
+    }
+  }
+  return invalid_argument(map.path + ": no place on the map where the chassis fits in every " +
+                          "heading: that needs " + number_text(footprint.circumscribed_radius()) +
+                          " m (its circumscribed radius) from every obstacle and the map's edge");
 }
 
 }  // namespace grip::sim

@@ -31,7 +31,8 @@ Status check_start(const LoadedMap& map, const Footprint& footprint, const Start
 // with margin), take the largest 4-connected group of such cells (the widest region the
 // vehicle can roam freely: not a closed pocket), and in it the cell whose centre is nearest the
 // map's bottom-left corner (ties: the lower row, then the lower column); heading 0 (+x).
-// kInvalidArgument naming the file and the clearance needed when no cell qualifies.
+// When no cell has the margin, it is halved, quartered, then dropped (small arenas); only when
+// the chassis fits nowhere even then, kInvalidArgument names the file and the clearance needed.
 Result<StartPose> choose_start(const LoadedMap& map, const Footprint& footprint,
                                double margin_m = 0.3);
 
