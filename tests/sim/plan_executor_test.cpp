@@ -28,11 +28,19 @@ PlanExecutor<V> make_executor(const V& vehicle, const OccupancyGrid& truth,
 
 PlanStep piece(double u0, double u1, double duration_s) { return PlanStep{{u0, u1}, duration_s}; }
 
+// A vehicle at rest at (1, 1) heading +x on an open 20 m x 10 m map, with its executor (which
+// points at the map: a Rig is built in place and never moved).
+template <typename V>
+struct Rig {
+  V vehicle;
+  OccupancyGrid truth = open_grid();
+  PlanExecutor<V> executor = make_executor(vehicle, truth, vehicle.rest_state(1.0, 1.0, 0.0));
+};
+
 class DdVelocityExecutorTest : public ::testing::Test {
  protected:
-  DdVelocity robot = DdVelocity::create(DdVelocityParams{}).value();
-  OccupancyGrid truth = open_grid();
-  PlanExecutor<DdVelocity> executor = make_executor(robot, truth, robot.rest_state(1.0, 1.0, 0.0));
+  Rig<DdVelocity> rig{DdVelocity::create(DdVelocityParams{}).value()};
+  PlanExecutor<DdVelocity>& executor = rig.executor;
 };
 
 TEST_F(DdVelocityExecutorTest, DrivingStraightAtOneMetrePerSecondForTwoSecondsEndsTwoMetresOn) {
@@ -177,9 +185,8 @@ TEST(PlanExecutorCollisionTest, AStartWhoseChassisTouchesAnObstacleIsRefused) {
 }
 
 TEST(PlanExecutorDynamicsTest, ADdAccelerationRobotBrakesToRestWhenItsPlanRunsOut) {
-  const DdAcceleration robot = DdAcceleration::create(DdAccelerationParams{}).value();
-  const OccupancyGrid truth = open_grid();
-  auto executor = make_executor(robot, truth, robot.rest_state(1.0, 1.0, 0.0));
+  Rig<DdAcceleration> rig{DdAcceleration::create(DdAccelerationParams{}).value()};
+  auto& executor = rig.executor;
   // 0.6 m/s^2 for 2 s: 1.2 m/s after 1.2 m; braking at 0.6 m/s^2 takes 2 s and 1.2 m.
   ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(0.6, 0.6, 2.0)}, 0),
             PlanVerdict::kAccepted);
@@ -190,16 +197,15 @@ TEST(PlanExecutorDynamicsTest, ADdAccelerationRobotBrakesToRestWhenItsPlanRunsOu
   EXPECT_EQ(executor.mode(), ExecutorMode::kBraking);
   executor.run_until(5 * kSecond);
   EXPECT_EQ(executor.mode(), ExecutorMode::kAtRest);
-  EXPECT_TRUE(robot.is_stopped(executor.state()));
+  EXPECT_TRUE(rig.vehicle.is_stopped(executor.state()));
   EXPECT_NEAR(executor.state()[0], 3.4, 1e-6);
   EXPECT_NEAR(executor.stats().distance_m, 2.4, 1e-6);
   EXPECT_EQ(executor.stats().contingencies, 1U);
 }
 
 TEST(PlanExecutorDynamicsTest, ACarStopsWhenThePlannerFallsSilent) {
-  const Car car = Car::create(CarParams{}).value();
-  const OccupancyGrid truth = open_grid();
-  auto executor = make_executor(car, truth, car.rest_state(1.0, 1.0, 0.0));
+  Rig<Car> rig{Car::create(CarParams{}).value()};
+  auto& executor = rig.executor;
   ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(0.6, 0.0, 10.0)}, 0),
             PlanVerdict::kAccepted);
   ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(0.6, 0.0, 10.0)}, 5 * kSecond),
