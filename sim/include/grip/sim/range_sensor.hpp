@@ -7,8 +7,9 @@
 // each walks the cells it crosses (world/line_of_sight.hpp, including the corner rule) and sees
 // every free cell up to and including the first obstacle cell, which stops it. A ray also stops
 // at the edge of the grid. N = max(16, ceil(2 pi radius / (0.5 res))): neighbouring rays are at
-// most half a cell apart at full range, so no cell within the radius lies between two rays
-// without being crossed by one (a cell is at least one cell wide in every direction); a cell
+// most half a cell apart at full range, so no cell lying wholly within the radius fits between
+// two rays without being crossed by one (a cell is at least one cell wide in every direction,
+// the gap between neighbours at most half a cell); a cell
 // that one ray reaches unobstructed is seen even if another ray is blocked before it. Every
 // seen cell has a point within radius_m of the sensor: nothing beyond the radius is marked.
 //
