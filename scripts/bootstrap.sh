@@ -10,6 +10,7 @@ packages=(
   libcli11-dev           # the grip command line
   nlohmann-json3-dev     # JSON reports (tools only, never on the planning path)
   libcairo2-dev          # PNG figures
+  libyaml-cpp-dev        # ROS map_server map metadata (sim/, `--map FILE.yaml`)
   cyclonedds-dev cyclonedds-tools  # DDS: libddsc, idlc and the CMake package
   stress-ng              # the load of `grip stress --load` (a built-in load is the fallback)
   util-linux             # setpriv: the scheduling tests drop capabilities with it
