@@ -52,7 +52,7 @@ PathSelector::PathSelector(int width_cells, int height_cells, double resolution_
       stack_(max_edges) {
   for (std::size_t c = 0; c < seen_.capacity(); ++c) GRIP_ASSERT(seen_.push_back(0));
   for (std::size_t i = 0; i < d_.capacity(); ++i) GRIP_ASSERT(d_.push_back(0.0F));
-  for (std::size_t e = 0; e < length_.capacity(); ++e) GRIP_ASSERT(length_.push_back(0.0F));
+  for (std::size_t e = 0; e < length_.capacity(); ++e) GRIP_ASSERT(length_.push_back(0.0));
 }
 
 void PathSelector::set_target(const OccupancyGrid& grid,
@@ -201,7 +201,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
       if (k == edge.last) break;
       k = std::min<int>(k + stride, edge.last);
     }
-    length_[e] = static_cast<float>(length);
+    length_[e] = length;
   }
   PathChoice& chosen = seen_any ? by_sight : by_rho;
   chosen.weight = std::exp(seen_any ? log_sight : log_rho);

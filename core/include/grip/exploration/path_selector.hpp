@@ -108,7 +108,7 @@ class PathSelector {
   BoundedVector<std::uint32_t> seen_;       // per grid cell: bit i set = sees target i
   BoundedVector<std::uint32_t> seen_list_;  // cells with a bit set, to clear them
   BoundedVector<float> d_;                  // per edge: d(tr, c) at its last sampled state
-  BoundedVector<float> length_;             // per edge: l(tr) at its last state
+  BoundedVector<double> length_;            // per edge: l(tr) at its last state
   BoundedVector<EdgeHandle> stack_;         // the pre-order walk
 };
 
