@@ -1,6 +1,7 @@
 #include "grip/exploration/path_selector.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string>
 
@@ -121,45 +122,41 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
   // Both candidates are tracked in one pass; which one counts is known only at its end.
   PathChoice by_sight;
   PathChoice by_rho;
-  double log_sight = std::numeric_limits<double>::infinity();
-  double log_rho = std::numeric_limits<double>::infinity();
   bool seen_any = false;
 
-  // Folds the state at (x, y) into the vector d; returns the new sum when the state sees a
-  // target, or a negative number when it sees none (the sum is unchanged).
-  const auto fold = [&](float* d, double x, double y) {
+  // Folds the state at (x, y) into the vector d and its sum. Most states see nothing (one mask
+  // read); a seen target costs a squared distance, and a square root only when it improves.
+  const auto fold = [&](float* d, double& d_sum, double x, double y) {
     const double u = (x - origin_x_m_) * inv_resolution;
     const double v = (y - origin_y_m_) * inv_resolution;
-    if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) return -1.0;
-    const std::uint32_t mask =
-        seen_[static_cast<std::uint32_t>(v) * static_cast<std::uint32_t>(width_) +
-              static_cast<std::uint32_t>(u)];
-    if (mask == 0) return -1.0;
-    seen_any = true;
-    double sum = 0.0;
-    for (std::uint32_t i = 0; i < targets; ++i) {
-      if ((mask >> i) & 1U) {
-        const auto distance =
-            static_cast<float>(std::hypot(x - target_x_m_[i], y - target_y_m_[i]));
-        d[i] = std::min(d[i], distance);
-      }
-      sum += static_cast<double>(d[i]);
+    if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) return;
+    std::uint32_t mask = seen_[static_cast<std::uint32_t>(v) * static_cast<std::uint32_t>(width_) +
+                               static_cast<std::uint32_t>(u)];
+    seen_any = seen_any || mask != 0;
+    for (; mask != 0; mask &= mask - 1) {
+      const auto i = static_cast<std::uint32_t>(std::countr_zero(mask));
+      const double dx = x - target_x_m_[i];
+      const double dy = y - target_y_m_[i];
+      const double old = static_cast<double>(d[i]);
+      if (dx * dx + dy * dy >= old * old) continue;
+      const auto distance = static_cast<float>(std::sqrt(dx * dx + dy * dy));
+      d_sum += static_cast<double>(distance) - old;
+      d[i] = distance;
     }
-    return sum;
   };
+  // One exponential per state serves both candidates: w = d exp(lambda l).
   const auto offer = [&](EdgeHandle e, std::uint16_t k, double x, double y, double d_sum,
                          double length) {
     if (tree.step_of(e, k) < min_step) return;
-    const double ls = std::log(d_sum) + lambda * length;
-    if (ls < log_sight) {
-      log_sight = ls;
-      by_sight = PathChoice{TreeState{e, k}, d_sum, length, 0.0, true};
+    const double growth = std::exp(lambda * length);
+    const double by_sight_weight = d_sum * growth;
+    if (by_sight_weight < by_sight.weight) {
+      by_sight = PathChoice{TreeState{e, k}, d_sum, length, by_sight_weight, true};
     }
     const double rho_end = rho.distance_m(x, y);
-    const double lr = std::log(rho_end) + lambda * length;
-    if (lr < log_rho) {
-      log_rho = lr;
-      by_rho = PathChoice{TreeState{e, k}, rho_end, length, 0.0, false};
+    const double by_rho_weight = rho_end * growth;
+    if (by_rho_weight < by_rho.weight) {
+      by_rho = PathChoice{TreeState{e, k}, rho_end, length, by_rho_weight, false};
     }
   };
 
@@ -192,20 +189,17 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
       const auto& q = tree.edge_state(e, static_cast<std::uint16_t>(k));
       const double x = state_x(q);
       const double y = state_y(q);
-      length += std::hypot(x - px, y - py);
+      length += std::sqrt((x - px) * (x - px) + (y - py) * (y - py));
       px = x;
       py = y;
-      const double folded = fold(d, x, y);
-      if (folded >= 0.0) d_sum = folded;
+      fold(d, d_sum, x, y);
       offer(e, static_cast<std::uint16_t>(k), x, y, d_sum, length);
       if (k == edge.last) break;
       k = std::min<int>(k + stride, edge.last);
     }
     length_[e] = length;
   }
-  PathChoice& chosen = seen_any ? by_sight : by_rho;
-  chosen.weight = std::exp(seen_any ? log_sight : log_rho);
-  return chosen;
+  return seen_any ? by_sight : by_rho;
 }
 
 template PathChoice PathSelector::select(const Planner<DdVelocity>&, std::uint32_t) noexcept;

@@ -28,8 +28,10 @@
 //    minimum), so each sampled state costs O(1) when it sees nothing and O(targets) when it
 //    does. The pass runs when the plan is chosen rather than while the tree grows: the planner
 //    splits, re-roots and prunes edges, and values kept in step with that would have to live
-//    inside it; the pass is linear in the tree and costs well under a millisecond for ten
-//    thousand edges.
+//    inside it. The pass is linear in the sampled states; measured 3.6 to 4.7 ms for trees of
+//    8,300 to 8,700 edges (about 80,000 recorded states, sampled every 0.2 s) near a 32-cell
+//    target on a loaded 2-core VM. It runs after growth, so the cycle's safety margin (or an
+//    earlier stop of growth) must cover it.
 //
 // Memory is reserved by create() (a 32-bit mask per grid cell, targets x floats per edge);
 // set_target() and select() never allocate and never throw.
