@@ -3,14 +3,16 @@
 // chooses the frontier target and the path of section 3 every cycle, runs the replanning cycle
 // on a fake clock and drives the vehicle along the committed plan for T. The small room must be
 // explored (coverage of the reachable free space) without a collision and in bounded cycles.
-// DISABLED_BuiltInScenes runs every built-in scene with every vehicle and prints the figures
-// (--gtest_also_run_disabled_tests).
+// The disabled BuiltInScenes tests run every built-in scene with every vehicle and print the
+// figures (--gtest_also_run_disabled_tests).
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <optional>
+#include <string>
+#include <tuple>
 
 #include "grip/exploration/frontier.hpp"
 #include "grip/exploration/path_selector.hpp"
@@ -187,19 +189,31 @@ TEST(ExplorationRun, AVelocityControlledRobotExploresASmallSceneWithoutCollision
   EXPECT_GE(r.coverage, 0.97);
 }
 
-TEST(ExplorationRun, DISABLED_BuiltInScenes) {
-  for (const SceneId id : all_scenes()) {
-    const Scene scene = make_scene(id).value();
-    for (const VehicleKind kind :
-         {VehicleKind::kDdVelocity, VehicleKind::kDdAcceleration, VehicleKind::kCar}) {
-      const ExplorationReport r = with_default_vehicle(kind, [&](const auto& vehicle) {
-        return explore(vehicle, scene.grid, scene.start_x_m, scene.start_y_m, scene.start_theta_rad,
-                       6000);
-      });
-      print(scene.name.c_str(), std::string(vehicle_name(kind)).c_str(), r);
-    }
-  }
+// One scene with one vehicle per test, so that a single pair can be run:
+// --gtest_also_run_disabled_tests --gtest_filter='*BuiltInScenes*meandros_dd_velocity*'.
+class BuiltInScenes : public ::testing::TestWithParam<std::tuple<SceneId, VehicleKind>> {};
+
+TEST_P(BuiltInScenes, Explore) {
+  const auto [id, kind] = GetParam();
+  const Scene scene = make_scene(id).value();
+  const ExplorationReport r = with_default_vehicle(kind, [&](const auto& vehicle) {
+    return explore(vehicle, scene.grid, scene.start_x_m, scene.start_y_m, scene.start_theta_rad,
+                   6000);
+  });
+  print(scene.name.c_str(), std::string(vehicle_name(kind)).c_str(), r);
 }
+
+INSTANTIATE_TEST_SUITE_P(
+    DISABLED_Exploration, BuiltInScenes,
+    ::testing::Combine(::testing::ValuesIn(all_scenes().begin(), all_scenes().end()),
+                       ::testing::Values(VehicleKind::kDdVelocity, VehicleKind::kDdAcceleration,
+                                         VehicleKind::kCar)),
+    [](const auto& test) {
+      std::string name = std::string(scene_name(std::get<0>(test.param))) + "_" +
+                         std::string(vehicle_name(std::get<1>(test.param)));
+      std::replace(name.begin(), name.end(), '-', '_');
+      return name;
+    });
 
 }  // namespace
 }  // namespace grip::rt
