@@ -190,7 +190,7 @@ TEST(ExplorationRun, AVelocityControlledRobotExploresASmallSceneWithoutCollision
 }
 
 // One scene with one vehicle per test, so that a single pair can be run:
-// --gtest_also_run_disabled_tests --gtest_filter='*BuiltInScenes*meandros_dd_velocity*'.
+// --gtest_also_run_disabled_tests --gtest_filter='*BuiltInScenes*meandros_dd_vel'.
 class BuiltInScenes : public ::testing::TestWithParam<std::tuple<SceneId, VehicleKind>> {};
 
 TEST_P(BuiltInScenes, Explore) {
