@@ -193,6 +193,13 @@ TEST(ExplorationRun, AVelocityControlledRobotExploresASmallSceneWithoutCollision
 // --gtest_also_run_disabled_tests --gtest_filter='*BuiltInScenes*meandros_dd_vel'.
 class BuiltInScenes : public ::testing::TestWithParam<std::tuple<SceneId, VehicleKind>> {};
 
+// Falls short today (coverage 0.64 after 3000 cycles, no collision): kept as the tool to tune
+// the car's exploration with.
+TEST(ExplorationRun, DISABLED_CarSmallScene) {
+  const Car car = Car::create({}).value();
+  print("small", "car", explore(car, small_scene(), 1.5, 1.5, 0.0, 3000));
+}
+
 TEST_P(BuiltInScenes, Explore) {
   const auto [id, kind] = GetParam();
   const Scene scene = make_scene(id).value();
