@@ -42,12 +42,22 @@ ReplanningCycle<V>::ReplanningCycle(Planner<V> planner, const CycleConfig& confi
     : planner_(std::move(planner)),
       config_(config),
       cycle_steps_(cycle_steps),
+      goal_cells_(planner_.checker().grid().cell_count()),
       plan_(config.max_plan_pieces) {}
+
+template <VehicleModel V>
+void ReplanningCycle<V>::set_goal(GoalCells goal) noexcept {
+  goal_cells_.clear();
+  for (const std::uint32_t c : goal.cells) {
+    if (!goal_cells_.push_back(c)) break;
+  }
+  goal_is_cells_ = true;
+}
 
 template <VehicleModel V>
 Status ReplanningCycle<V>::start(const State& q0, const GoalRegion& goal) {
   if (auto s = planner_.set_problem(q0, goal); !s) return s;
-  goal_ = goal;
+  set_goal(goal);
   committed_ = TreeState{};
   plan_.clear();
   return Ok{};
@@ -83,14 +93,25 @@ typename ReplanningCycle<V>::State ReplanningCycle<V>::predicted_state_without_p
 template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
                                      std::int64_t deadline_ns) noexcept {
+  return run(now_ns, deadline_ns,
+             [](const Planner<V>& planner) noexcept { return planner.best_state(); });
+}
+
+template <VehicleModel V>
+CycleOutcome ReplanningCycle<V>::run(
+    FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
+    FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
   CycleOutcome out;
   const std::int64_t cycle_start = now_ns();
   // 1. The new root: T along the committed plan, when the plan covers T.
   const TreeState next_root =
       committed_.edge != kNoHandle ? planner_.state_at_step(committed_, cycle_steps_) : TreeState{};
   if (next_root.edge != kNoHandle) {
-    out.retain_status = planner_.retain(next_root, goal_, config_.cycle_s,
-                                        blocked_noted_ ? &newly_blocked_ : nullptr);
+    const CellBox* blocked = blocked_noted_ ? &newly_blocked_ : nullptr;
+    out.retain_status =
+        goal_is_cells_
+            ? planner_.retain(next_root, GoalCells{goal_cells_.span()}, config_.cycle_s, blocked)
+            : planner_.retain(next_root, goal_, config_.cycle_s, blocked);
     out.edges_retained = planner_.last_retain().edges_kept;
   } else {
     out.retain_status = RetainStatus::kRootNotInTree;
@@ -100,7 +121,9 @@ CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
                         ? planner_.tree().edge_state(next_root.edge, next_root.index)
                         : predicted_state_without_plan();
     out.restarted = true;
-    out.retain_status = planner_.restart(q, goal_, config_.cycle_s);
+    out.retain_status = goal_is_cells_
+                            ? planner_.restart(q, GoalCells{goal_cells_.span()}, config_.cycle_s)
+                            : planner_.restart(q, goal_, config_.cycle_s);
     committed_ = TreeState{};
   } else if (!planner_.contains(committed_)) {
     committed_ = TreeState{};  // the new map or T cut the rest of the previous plan
@@ -122,9 +145,10 @@ CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
   const std::int64_t commit_start = now_ns();
   // 3. Commit: the solution if there is one, else the state closest to the target; its path
   // must cover the next cycle and end where the vehicle can brake safely.
-  const TreeState candidate = out.retain_status == RetainStatus::kOk
-                                  ? planner_.committable_state(planner_.best_state(), cycle_steps_)
-                                  : TreeState{};
+  const TreeState candidate =
+      out.retain_status == RetainStatus::kOk
+          ? planner_.committable_state(choose_target(planner_), cycle_steps_)
+          : TreeState{};
   if (candidate.edge != kNoHandle) {
     commit(candidate);
     out.committed = true;

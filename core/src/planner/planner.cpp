@@ -90,6 +90,7 @@ Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerCo
       cell_state_(free_cells_.capacity()),
       tree_cells_(std::move(tree_cells)),
       goal_cells_(grid.cell_count()),
+      goal_mask_(grid.cell_count()),
       order_(config.max_edges),
       stack_(config.max_edges),
       keep_(config.max_edges),
@@ -116,6 +117,7 @@ Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerCo
   for (std::uint32_t e = 0; e < config.max_edges; ++e) {
     GRIP_ASSERT(subtree_cost_.push_back(std::numeric_limits<double>::infinity()));
   }
+  for (std::uint32_t c = 0; c < grid.cell_count(); ++c) GRIP_ASSERT(goal_mask_.push_back(0));
 }
 
 template <VehicleModel V>
@@ -128,7 +130,21 @@ Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
   where += std::to_string(goal.y_m);
   where += ") radius ";
   where += std::to_string(goal.radius_m);
-  switch (restart(start, goal, config_.safety_horizon_s)) {
+  return problem_status(restart(start, goal, config_.safety_horizon_s), start, where);
+}
+
+template <VehicleModel V>
+Status Planner<V>::set_problem(const State& start, GoalCells goal) {
+  std::string what = "of ";
+  what += std::to_string(goal.cells.size());
+  what += " cells";
+  return problem_status(restart(start, goal, config_.safety_horizon_s), start, what);
+}
+
+template <VehicleModel V>
+Status Planner<V>::problem_status(RetainStatus status, const State& start,
+                                  const std::string& where) {
+  switch (status) {
     case RetainStatus::kOk:
       return Ok{};
     case RetainStatus::kInvalidState:
@@ -153,6 +169,16 @@ Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
 template <VehicleModel V>
 RetainStatus Planner<V>::restart(const State& q, const GoalRegion& goal,
                                  double horizon_s) noexcept {
+  return restart_towards(q, GoalSpec{&goal, {}}, horizon_s);
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::restart(const State& q, GoalCells goal, double horizon_s) noexcept {
+  return restart_towards(q, GoalSpec{nullptr, goal.cells}, horizon_s);
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::restart_towards(const State& q, GoalSpec goal, double horizon_s) noexcept {
   if (!vehicle_.validate_state(q)) return RetainStatus::kInvalidState;
   if (checker_.stale() || !problem_set_) checker_.refresh();
   if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
@@ -182,28 +208,60 @@ RetainStatus Planner<V>::restart(const State& q, const GoalRegion& goal,
 }
 
 template <VehicleModel V>
-RetainStatus Planner<V>::set_goal(const GoalRegion& goal) noexcept {
+RetainStatus Planner<V>::set_goal(GoalSpec goal) noexcept {
+  const std::uint32_t cell_count = grid_->cell_count();
   int gx = 0;
   int gy = 0;
-  if (!std::isfinite(goal.radius_m) || goal.radius_m <= 0.0 ||
-      !grid_->to_cell(goal.x_m, goal.y_m, gx, gy)) {
-    return RetainStatus::kGoalOutsideGrid;
+  if (goal.disk != nullptr) {
+    const GoalRegion& disk = *goal.disk;
+    if (!std::isfinite(disk.radius_m) || disk.radius_m <= 0.0 ||
+        !grid_->to_cell(disk.x_m, disk.y_m, gx, gy)) {
+      return RetainStatus::kGoalOutsideGrid;
+    }
+  } else {
+    // Checked before anything changes, so that a refused goal leaves the current one intact.
+    bool any_free = false;
+    for (const std::uint32_t c : goal.cells) {
+      if (c >= cell_count) return RetainStatus::kGoalOutsideGrid;
+      any_free = any_free || grid_->at(c) == Cell::kFree;
+    }
+    if (!any_free) return RetainStatus::kGoalWithoutFreeCell;
   }
-  // The target set F: free cells whose centres lie in the goal disk.
+  for (const std::uint32_t c : goal_cells_) goal_mask_[c] = 0;
   goal_cells_.clear();
-  const int reach = static_cast<int>(std::ceil(goal.radius_m / grid_->resolution())) + 1;
-  for (int cy = gy - reach; cy <= gy + reach; ++cy) {
-    for (int cx = gx - reach; cx <= gx + reach; ++cx) {
-      if (!grid_->in_bounds(cx, cy) || grid_->at(cx, cy) != Cell::kFree) continue;
-      if (goal.contains(grid_->cell_center_x(cx), grid_->cell_center_y(cy))) {
-        GRIP_ASSERT(goal_cells_.push_back(grid_->index(cx, cy)));  // sized to the grid
+  if (goal.disk != nullptr) {
+    // The target set F: free cells whose centres lie in the goal disk.
+    const GoalRegion& disk = *goal.disk;
+    const int reach = static_cast<int>(std::ceil(disk.radius_m / grid_->resolution())) + 1;
+    for (int cy = gy - reach; cy <= gy + reach; ++cy) {
+      for (int cx = gx - reach; cx <= gx + reach; ++cx) {
+        if (!grid_->in_bounds(cx, cy) || grid_->at(cx, cy) != Cell::kFree) continue;
+        if (disk.contains(grid_->cell_center_x(cx), grid_->cell_center_y(cy))) {
+          GRIP_ASSERT(goal_cells_.push_back(grid_->index(cx, cy)));  // sized to the grid
+        }
       }
+    }
+  } else {
+    // The given free cells, each once (the mask drops repeats).
+    for (const std::uint32_t c : goal.cells) {
+      if (grid_->at(c) != Cell::kFree || goal_mask_[c] != 0) continue;
+      goal_mask_[c] = 1;
+      GRIP_ASSERT(goal_cells_.push_back(c));  // sized to the grid
     }
   }
   if (goal_cells_.empty()) return RetainStatus::kGoalWithoutFreeCell;
-  goal_ = goal;
+  goal_is_disk_ = goal.disk != nullptr;
+  if (goal_is_disk_) goal_ = *goal.disk;
   rho_field_.compute(*grid_, checker_.clearance(), goal_cells_.span(), config_.rho_clearance_m);
   return RetainStatus::kOk;
+}
+
+template <VehicleModel V>
+bool Planner<V>::in_goal_region(const State& q) const noexcept {
+  if (goal_is_disk_) return goal_.contains(state_x(q), state_y(q));
+  int cx = 0;
+  int cy = 0;
+  return grid_->to_cell(state_x(q), state_y(q), cx, cy) && goal_mask_[grid_->index(cx, cy)] != 0;
 }
 
 template <VehicleModel V>
@@ -226,12 +284,24 @@ void Planner<V>::reset_tree(const State& q) noexcept {
   best_cost_m_ = std::numeric_limits<double>::infinity();
   register_edge(root);
   if (config_.selection == Selection::kGrip) push_scored(root);
-  if (goal_.contains(state_x(q), state_y(q))) solution_ = best_;
+  if (in_goal_region(q)) solution_ = best_;
 }
 
 template <VehicleModel V>
 RetainStatus Planner<V>::retain(TreeState new_root, const GoalRegion& goal, double horizon_s,
                                 const CellBox* newly_blocked) noexcept {
+  return retain_towards(new_root, GoalSpec{&goal, {}}, horizon_s, newly_blocked);
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::retain(TreeState new_root, GoalCells goal, double horizon_s,
+                                const CellBox* newly_blocked) noexcept {
+  return retain_towards(new_root, GoalSpec{nullptr, goal.cells}, horizon_s, newly_blocked);
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::retain_towards(TreeState new_root, GoalSpec goal, double horizon_s,
+                                        const CellBox* newly_blocked) noexcept {
   if (config_.selection != Selection::kGrip) return RetainStatus::kUnsupportedSelection;
   GRIP_ASSERT(config_.steps_per_record == 1);
   if (!problem_set_ || new_root.edge == kNoHandle || !tree_.contains(new_root.edge) ||
@@ -500,11 +570,11 @@ void Planner<V>::rescore_tree() noexcept {
     const Edge& edge = tree_.edge(e);
     for (int k = edge.first + 1; k <= edge.last; k += static_cast<int>(rescore_stride_)) {
       const State& qk = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
-      if (!goal_.contains(state_x(qk), state_y(qk))) continue;
+      if (!in_goal_region(qk)) continue;
       // Back to the first state of this edge in F, between the samples.
       while (k > edge.first + 1) {
         const State& earlier = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k - 1));
-        if (!goal_.contains(state_x(earlier), state_y(earlier))) break;
+        if (!in_goal_region(earlier)) break;
         --k;
       }
       const auto index = static_cast<std::uint16_t>(k);
@@ -700,7 +770,7 @@ typename Planner<V>::Propagated Planner<V>::propagate(TrajectoryHandle t, const 
       out.best_rho_m = rho;
       out.best_index = recorded;
     }
-    if (out.goal_index == 0 && goal_.contains(state_x(q), state_y(q))) {
+    if (out.goal_index == 0 && in_goal_region(q)) {
       out.goal_index = recorded;
       // Standalone runs end at the goal; replanning goes on (the vehicle may be inside F).
       if (config_.stop_at_goal) break;
@@ -754,7 +824,7 @@ double Planner<V>::sampled_rho(EdgeHandle e, std::uint32_t stride, bool* in_goal
   for (int k = edge.last; k >= first; k -= static_cast<int>(stride)) {
     const State& q = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
     rho = std::min(rho, rho_at(q));
-    if (in_goal != nullptr && !*in_goal) *in_goal = goal_.contains(state_x(q), state_y(q));
+    if (in_goal != nullptr && !*in_goal) *in_goal = in_goal_region(q);
   }
   return rho;
 }

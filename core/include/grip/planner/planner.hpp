@@ -44,6 +44,13 @@ struct GoalRegion {
   }
 };
 
+// The goal region F given as a set of grid cells (indices, cell_y * width + cell_x), e.g. the
+// approach cells of a frontier group (exploration/frontier.hpp): the reference point is in F
+// when the cell containing it is one of them. Cells that are not kFree are ignored.
+struct GoalCells {
+  std::span<const std::uint32_t> cells;
+};
+
 // One piece of a plan: a control held for a duration (section 1, p = {(u1, dt1), ...}).
 struct PlanStep {
   std::array<double, 2> control{};
@@ -114,6 +121,9 @@ class Planner {
   // tree to the start. Refuses NaN or out-of-limit states, a start in collision, a goal
   // outside the grid or with no free cell.
   Status set_problem(const State& start, const GoalRegion& goal);
+  // The same with F as a set of cells; an index >= cell_count() is refused like a goal outside
+  // the grid. The span is read during the call only.
+  Status set_problem(const State& start, GoalCells goal);
 
   // Replanning (Algorithm 1, first half; allocation-free). Re-roots the tree at `new_root`,
   // the state the vehicle will be in when the next plan starts, and returns everything not
@@ -131,6 +141,11 @@ class Planner {
                       const CellBox* newly_blocked = nullptr) noexcept;
   // Starts a fresh tree at q (when q is not on the tree), allocation-free.
   RetainStatus restart(const State& q, const GoalRegion& goal, double horizon_s) noexcept;
+  // retain() and restart() with F as a set of cells (kGoalOutsideGrid for an index outside the
+  // grid, kGoalWithoutFreeCell when none is free); the span is read during the call only.
+  RetainStatus retain(TreeState new_root, GoalCells goal, double horizon_s,
+                      const CellBox* newly_blocked = nullptr) noexcept;
+  RetainStatus restart(const State& q, GoalCells goal, double horizon_s) noexcept;
   const RetainStats& last_retain() const noexcept { return retain_stats_; }
 
   // Grows the tree until the goal is reached, should_stop() returns true (checked once per
@@ -194,8 +209,19 @@ class Planner {
           CollisionChecker checker, DistanceField field,
           std::optional<NearestSourceField> tree_cells);
 
+  // F as the caller gave it: a disk (disk != nullptr) or a set of cells.
+  struct GoalSpec {
+    const GoalRegion* disk = nullptr;
+    std::span<const std::uint32_t> cells;
+  };
+
   bool iterate() noexcept;
-  RetainStatus set_goal(const GoalRegion& goal) noexcept;
+  Status problem_status(RetainStatus status, const State& start, const std::string& goal);
+  RetainStatus restart_towards(const State& q, GoalSpec goal, double horizon_s) noexcept;
+  RetainStatus retain_towards(TreeState new_root, GoalSpec goal, double horizon_s,
+                              const CellBox* newly_blocked) noexcept;
+  RetainStatus set_goal(GoalSpec goal) noexcept;
+  bool in_goal_region(const State& q) const noexcept;
   void set_horizon(double horizon_s) noexcept;
   void reset_tree(const State& q) noexcept;
   void prune_and_order(EdgeHandle root, std::uint32_t shift, bool map_changed,
@@ -235,12 +261,14 @@ class Planner {
   BoundedVector<TreeState> cell_state_;           // RRT: a tree state in each grid cell
   std::optional<NearestSourceField> tree_cells_;  // RRT: nearest tree cell under rho_A*
   BoundedVector<std::uint32_t> goal_cells_;
-  BoundedVector<EdgeHandle> order_;     // retainment: the kept tree in pre-order
-  BoundedVector<EdgeHandle> stack_;     // retainment: depth-first walk
-  BoundedVector<std::uint8_t> keep_;    // retainment: per edge handle, see prune_and_order
-  BoundedVector<double> subtree_cost_;  // retainment: best estimated arrival below an edge
+  BoundedVector<std::uint8_t> goal_mask_;  // per grid cell: 1 in F (cell-set goals only)
+  BoundedVector<EdgeHandle> order_;        // retainment: the kept tree in pre-order
+  BoundedVector<EdgeHandle> stack_;        // retainment: depth-first walk
+  BoundedVector<std::uint8_t> keep_;       // retainment: per edge handle, see prune_and_order
+  BoundedVector<double> subtree_cost_;     // retainment: best estimated arrival below an edge
   Random rng_;
   GoalRegion goal_;
+  bool goal_is_disk_ = true;  // else F is goal_cells_ (goal_mask_)
   PlannerStats stats_;
   RetainStats retain_stats_;
   std::uint64_t cycle_edges_ = 0;         // i of Eq. 2: edges propagated before, this cycle

@@ -57,7 +57,13 @@ class ReplanningCycle {
   // Start-up: the vehicle at rest at q0 (or moving: any valid state) and the first target.
   Status start(const State& q0, const GoalRegion& goal);
   // The target of the next cycles (a frontier, a goal).
-  void set_goal(const GoalRegion& goal) noexcept { goal_ = goal; }
+  void set_goal(const GoalRegion& goal) noexcept {
+    goal_ = goal;
+    goal_is_cells_ = false;
+  }
+  // The same as a set of cells (exploration: a frontier group's approach cells), copied; cells
+  // beyond the grid's cell count are dropped.
+  void set_goal(GoalCells goal) noexcept;
   const GoalRegion& goal() const noexcept { return goal_; }
 
   // Where cells became non-free since the last cycle (map updates): the next retainment checks
@@ -70,6 +76,11 @@ class ReplanningCycle {
 
   // Runs one cycle, growing the tree until now_ns() >= deadline_ns - safety margin.
   CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns) noexcept;
+  // The same, with the state the plan should lead to chosen by `choose_target` instead of the
+  // planner's best_state() (exploration: PathSelector::select); it is then cut back to the
+  // latest state that can brake safely, at least T from the root, as usual.
+  CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
+                   FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
 
   // The committed plan, from the root of the current cycle (the state at the start of the
   // next cycle's execution); empty when the vehicle is to brake.
@@ -88,7 +99,9 @@ class ReplanningCycle {
   CycleConfig config_;
   std::uint32_t cycle_steps_;
   GoalRegion goal_;
-  TreeState committed_;  // end of the committed plan in the tree; empty: braking
+  BoundedVector<std::uint32_t> goal_cells_;
+  bool goal_is_cells_ = false;  // the target is goal_cells_, not goal_
+  TreeState committed_;         // end of the committed plan in the tree; empty: braking
   CellBox newly_blocked_;
   bool blocked_noted_ = false;
   BoundedVector<PlanStep> plan_;

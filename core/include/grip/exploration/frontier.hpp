@@ -1,0 +1,156 @@
+#pragma once
+// Frontier-based targets for mapping an unknown workspace (GRIP.md section 3): frontier cells
+// on the three-valued map, grouped by flood fill, each group's rho_A* distance from the robot,
+// and the choice of the target group: close by rho_A* and small first.
+//
+// Definitions (the choices the paper leaves open):
+//  - A frontier cell is a kFree cell with a kUnknown cell among its 4 side neighbours. Side
+//    neighbours only: a free cell that touches unknown space at a corner alone lies beside a
+//    frontier cell already, and counting it would thicken every frontier and turn wall corners
+//    into one-cell groups. Outside the grid is not unknown (it reads as obstacle).
+//  - Groups are the 8-connected components of frontier cells: a diagonal (staircase) frontier,
+//    which side-neighbour frontiers produce, stays one group.
+//  - The reference point cannot stand on a frontier cell: it lies one cell from unknown space,
+//    which counts as an obstacle. A frontier cell is *approached* from a cell the chassis can
+//    occupy (free, clearance >= clearance_m: the cells the planner's rho wavefront traverses)
+//    within approach_range_m of it, in sight of it (only free cells in between). Its rho_A* is
+//    the wavefront distance from the robot to that cell plus the straight distance to the
+//    frontier cell, minimised over such cells. A group is reachable when one of its cells is.
+//    This is what makes a frontier behind a gap too narrow for the chassis unreachable.
+//  - The robot's wavefront starts from its own cell and from the chassis cells in sight within
+//    approach_range_m of it (all at distance 0), so that a robot standing closer to a wall than
+//    clearance_m (where the wavefront could not leave its cell) still reaches the open space.
+//
+// Capacity is fixed by create() (every buffer sized from the grid); update() and the accessors
+// never allocate and never throw.
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "grip/common/result.hpp"
+#include "grip/memory/fixed_vector.hpp"
+#include "grip/world/clearance_map.hpp"
+#include "grip/world/distance_field.hpp"
+#include "grip/world/occupancy_grid.hpp"
+
+namespace grip {
+
+enum class ExplorationStatus {
+  kTarget,            // a reachable frontier group was chosen: target() and approach_cells()
+  kComplete,          // no reachable frontier remains: exploration is over
+  kRobotOutsideGrid,  // the robot's position is not a cell of the grid (or not finite)
+};
+std::string_view exploration_status_name(ExplorationStatus s) noexcept;
+
+struct FrontierConfig {
+  // [m] The clearance the chassis' reference point needs. Must equal the planner's
+  // PlannerConfig::rho_clearance_m: approach cells are handed to the planner as its target set
+  // F, and its rho wavefront only leaves target cells it can traverse.
+  double clearance_m = 0.3;
+  // [m] How close the reference point must come to a frontier cell (straight, in sight). At
+  // least clearance_m plus a cell diagonal, or a frontier along a straight wall of unknown space
+  // could never be approached: the nearest chassis cell lies about clearance_m + 0.07 m away.
+  double approach_range_m = 0.5;
+  // Target score [m] = rho_m + size_weight * min(size_m, size_cap_m), where size_m is the
+  // group's frontier length (cells x resolution). Why: a small group left behind costs a trip
+  // back later (the paper's reason to prefer small groups), while a long frontier will be
+  // crossed anyway on the way into the space behind it. With the defaults a group of 1 m beats
+  // a 6 m one up to 2.5 m farther; beyond the cap every long frontier weighs the same, so that
+  // distance decides among them and the robot does not cross the map for a shorter one.
+  double size_weight = 0.5;
+  double size_cap_m = 6.0;
+  // Groups with fewer cells are ignored (1: none is). Raise it to skip single unknown cells
+  // a sensor may leave between its rays.
+  std::uint32_t min_group_cells = 1;
+
+  // Errors name the bad value: clearance_m < 0, approach_range_m not > clearance_m + one cell
+  // diagonal, size_weight < 0, size_cap_m < 0 (or any of them not finite), min_group_cells 0.
+  Status validate(double resolution_m) const;
+};
+
+struct FrontierGroup {
+  static constexpr std::uint32_t kNoCell = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t first = 0;  // its cells are FrontierMap::frontier_cells()[first, first + size)
+  std::uint32_t size = 0;   // [cells]
+  double rho_m = std::numeric_limits<double>::infinity();    // +inf: not reachable
+  std::uint32_t nearest_cell = kNoCell;                      // the cell that gives rho_m
+  double score_m = std::numeric_limits<double>::infinity();  // see FrontierConfig; +inf: ignored
+  bool reachable() const noexcept { return rho_m < std::numeric_limits<double>::infinity(); }
+};
+
+class FrontierMap {
+ public:
+  static constexpr std::uint32_t kNoGroup = std::numeric_limits<std::uint32_t>::max();
+
+  // Allocates every buffer for grids of this size and resolution. Errors as for
+  // OccupancyGrid::create and FrontierConfig::validate.
+  static Result<FrontierMap> create(int width_cells, int height_cells, double resolution_m,
+                                    const FrontierConfig& config);
+
+  // Recomputes everything from the grid (a full pass: O(cells) for detection, grouping and the
+  // robot's wavefront, plus the approach windows of the frontier cells). `clearance` must be
+  // computed from this grid at its current revision (e.g. the planner's
+  // CollisionChecker::clearance() after a refresh; asserted). The robot is the reference point
+  // at (robot_x_m, robot_y_m). kTarget when a group was chosen, kComplete when no reachable
+  // frontier group remains, kRobotOutsideGrid (nothing computed, no target) when the position
+  // is not in the grid.
+  ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                           double robot_x_m, double robot_y_m) noexcept;
+
+  ExplorationStatus status() const noexcept { return status_; }
+  // Every frontier cell, grouped: group g's cells are contiguous (see FrontierGroup::first), in
+  // flood-fill order from the group's lowest cell index.
+  std::span<const std::uint32_t> frontier_cells() const noexcept { return cells_.span(); }
+  // The groups in order of their lowest cell index.
+  std::span<const FrontierGroup> groups() const noexcept { return groups_.span(); }
+  std::span<const std::uint32_t> group_cells(std::uint32_t group) const noexcept;
+  // The chosen group (an index into groups()), kNoGroup unless status() is kTarget.
+  std::uint32_t target() const noexcept { return target_; }
+  // The target group's cells (empty without a target): the cells c of section 3's d(tr).
+  std::span<const std::uint32_t> target_cells() const noexcept;
+  // The cells from which the target group is approached (each once; empty without a
+  // target): the planner's target set F, Planner::retain(root, GoalCells{approach_cells()}, T).
+  std::span<const std::uint32_t> approach_cells() const noexcept { return approach_.span(); }
+  // The robot's wavefront of the last update (rho_A* from the robot, in the chassis' space).
+  const DistanceField& robot_field() const noexcept { return field_; }
+  const FrontierConfig& config() const noexcept { return config_; }
+
+ private:
+  struct Offset {
+    int dx;
+    int dy;
+    std::uint32_t cost;  // straight distance in DistanceField cost units (resolution / 70)
+  };
+
+  FrontierMap(int width_cells, int height_cells, double resolution_m, const FrontierConfig& config,
+              DistanceField field);
+  void detect_and_group(const OccupancyGrid& grid) noexcept;
+  void seed_robot_field(const OccupancyGrid& grid, int robot_cx, int robot_cy) noexcept;
+  void measure_group(const OccupancyGrid& grid, FrontierGroup& group) noexcept;
+  void collect_approach_cells(const OccupancyGrid& grid, const FrontierGroup& group) noexcept;
+  // Calls visit(cell, x, y, cost via it) for every chassis cell the wavefront reached within the
+  // approach window of (cx, cy); the caller tests sight (only when the cost could matter).
+  template <typename Visit>
+  void for_each_approach(const OccupancyGrid& grid, int cx, int cy, Visit&& visit) const noexcept;
+
+  int width_;
+  int height_;
+  double resolution_;
+  FrontierConfig config_;
+  DistanceField field_;
+  std::vector<Offset> window_;          // the approach disk, nearest offsets first
+  BoundedVector<std::uint32_t> label_;  // per cell: kNotFrontier, kUnlabelled or a group
+  BoundedVector<std::uint32_t> cells_;  // frontier cells, grouped (the flood fill's queue)
+  BoundedVector<FrontierGroup> groups_;
+  BoundedVector<std::uint32_t> seeds_;     // the robot wavefront's start cells
+  BoundedVector<std::uint32_t> approach_;  // the target's approach cells
+  BoundedVector<std::uint32_t> stamp_;     // per cell: approach_ membership, by generation
+  std::uint32_t generation_ = 0;
+  std::uint32_t target_ = kNoGroup;
+  ExplorationStatus status_ = ExplorationStatus::kComplete;
+};
+
+}  // namespace grip

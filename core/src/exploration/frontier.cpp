@@ -1,0 +1,264 @@
+#include "grip/exploration/frontier.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "../world/validation.hpp"
+#include "grip/common/enum_names.hpp"
+#include "sight_line.hpp"
+
+namespace grip {
+
+namespace {
+
+constexpr std::array<NamedValue<ExplorationStatus>, 3> kExplorationStatusNames{{
+    {ExplorationStatus::kTarget, "target"},
+    {ExplorationStatus::kComplete, "complete"},
+    {ExplorationStatus::kRobotOutsideGrid, "robot-outside-grid"},
+}};
+
+// label_ values besides group indices.
+constexpr std::uint32_t kNotFrontier = std::numeric_limits<std::uint32_t>::max();
+constexpr std::uint32_t kUnlabelled = kNotFrontier - 1;
+constexpr std::uint32_t kUnreachable = DistanceField::kUnreachable;
+
+}  // namespace
+
+std::string_view exploration_status_name(ExplorationStatus s) noexcept {
+  return name_in(kExplorationStatusNames, s);
+}
+
+Status FrontierConfig::validate(double resolution_m) const {
+  const auto bad = [](const char* name, double value, const std::string& rule) -> Status {
+    return invalid_argument(std::string("frontier: ") + name + " must be " + rule + " (got " +
+                            detail::format_number(value) + ")");
+  };
+  if (!(std::isfinite(clearance_m) && clearance_m >= 0.0)) {
+    return bad("clearance_m", clearance_m, "finite and >= 0");
+  }
+  const double min_range = clearance_m + resolution_m * std::sqrt(2.0);
+  if (!(std::isfinite(approach_range_m) && approach_range_m > min_range)) {
+    return bad("approach_range_m", approach_range_m,
+               "finite and > clearance_m + a cell diagonal = " + detail::format_number(min_range));
+  }
+  if (!(std::isfinite(size_weight) && size_weight >= 0.0)) {
+    return bad("size_weight", size_weight, "finite and >= 0");
+  }
+  if (!(std::isfinite(size_cap_m) && size_cap_m >= 0.0)) {
+    return bad("size_cap_m", size_cap_m, "finite and >= 0");
+  }
+  if (min_group_cells == 0) return bad("min_group_cells", 0.0, ">= 1");
+  return Ok{};
+}
+
+Result<FrontierMap> FrontierMap::create(int width_cells, int height_cells, double resolution_m,
+                                        const FrontierConfig& config) {
+  if (auto error =
+          detail::check_grid_size("FrontierMap", width_cells, height_cells, resolution_m)) {
+    return *std::move(error);
+  }
+  if (auto s = config.validate(resolution_m); !s) return s.error();
+  auto field = DistanceField::create(width_cells, height_cells, resolution_m);
+  if (!field) return field.error();
+  return FrontierMap(width_cells, height_cells, resolution_m, config, std::move(field).value());
+}
+
+FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
+                         const FrontierConfig& config, DistanceField field)
+    : width_(width_cells),
+      height_(height_cells),
+      resolution_(resolution_m),
+      config_(config),
+      field_(std::move(field)),
+      label_(field_.cell_count()),
+      cells_(field_.cell_count()),
+      // Frontier cells of different groups are not 8-adjacent: at most one group per 2x2 block.
+      groups_(static_cast<std::size_t>((width_cells + 1) / 2) *
+              static_cast<std::size_t>((height_cells + 1) / 2)),
+      seeds_(field_.cell_count()),
+      approach_(field_.cell_count()),
+      stamp_(field_.cell_count()) {
+  const int reach = static_cast<int>(std::floor(config.approach_range_m / resolution_m));
+  const double reach_cells = config.approach_range_m / resolution_m;
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const double d = std::hypot(dx, dy);
+      if (d > reach_cells) continue;
+      window_.push_back(Offset{
+          dx, dy, static_cast<std::uint32_t>(std::lround(d * DistanceField::kCostUnitsPerCell))});
+    }
+  }
+  // Nearest first: the first acceptable cell of equal wavefront cost is the closest one.
+  std::stable_sort(window_.begin(), window_.end(),
+                   [](const Offset& a, const Offset& b) { return a.cost < b.cost; });
+  for (std::uint32_t c = 0; c < field_.cell_count(); ++c) {
+    GRIP_ASSERT(label_.push_back(kNotFrontier));
+    GRIP_ASSERT(stamp_.push_back(0));
+  }
+}
+
+std::span<const std::uint32_t> FrontierMap::group_cells(std::uint32_t group) const noexcept {
+  GRIP_ASSERT(group < groups_.size());
+  return cells_.span().subspan(groups_[group].first, groups_[group].size);
+}
+
+std::span<const std::uint32_t> FrontierMap::target_cells() const noexcept {
+  return target_ == kNoGroup ? std::span<const std::uint32_t>{} : group_cells(target_);
+}
+
+ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                                      double robot_x_m, double robot_y_m) noexcept {
+  GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
+              grid.resolution() == resolution_);
+  target_ = kNoGroup;
+  approach_.clear();
+  int robot_cx = 0;
+  int robot_cy = 0;
+  if (!grid.to_cell(robot_x_m, robot_y_m, robot_cx, robot_cy)) {
+    groups_.clear();
+    cells_.clear();
+    status_ = ExplorationStatus::kRobotOutsideGrid;
+    return status_;
+  }
+  detect_and_group(grid);
+  field_.prepare(grid, clearance, config_.clearance_m);
+  seed_robot_field(grid, robot_cx, robot_cy);
+  field_.propagate(seeds_.span());
+
+  // The target: the least score; ties go to the group found first (lowest cell index).
+  double best = std::numeric_limits<double>::infinity();
+  for (std::uint32_t g = 0; g < groups_.size(); ++g) {
+    FrontierGroup& group = groups_[g];
+    measure_group(grid, group);
+    if (!group.reachable() || group.size < config_.min_group_cells) continue;
+    const double size_m = group.size * resolution_;
+    group.score_m = group.rho_m + config_.size_weight * std::min(size_m, config_.size_cap_m);
+    if (group.score_m < best) {
+      best = group.score_m;
+      target_ = g;
+    }
+  }
+  if (target_ == kNoGroup) {
+    status_ = ExplorationStatus::kComplete;
+    return status_;
+  }
+  collect_approach_cells(grid, groups_[target_]);
+  status_ = ExplorationStatus::kTarget;
+  return status_;
+}
+
+void FrontierMap::detect_and_group(const OccupancyGrid& grid) noexcept {
+  const std::span<const Cell> map = grid.cells();
+  const auto w = static_cast<std::uint32_t>(width_);
+  const auto h = static_cast<std::uint32_t>(height_);
+  const auto unknown = [&](std::uint32_t i) { return map[i] == Cell::kUnknown; };
+  for (std::uint32_t y = 0; y < h; ++y) {
+    for (std::uint32_t x = 0; x < w; ++x) {
+      const std::uint32_t i = y * w + x;
+      const bool frontier =
+          map[i] == Cell::kFree && ((x > 0 && unknown(i - 1)) || (x + 1 < w && unknown(i + 1)) ||
+                                    (y > 0 && unknown(i - w)) || (y + 1 < h && unknown(i + w)));
+      label_[i] = frontier ? kUnlabelled : kNotFrontier;
+    }
+  }
+  // Flood fill, 8-connected, from each unlabelled cell in index order. cells_ is the queue:
+  // what the fill appends from `first` on is the group.
+  cells_.clear();
+  groups_.clear();
+  const auto n = static_cast<std::uint32_t>(label_.size());
+  for (std::uint32_t start = 0; start < n; ++start) {
+    if (label_[start] != kUnlabelled) continue;
+    const auto g = static_cast<std::uint32_t>(groups_.size());
+    FrontierGroup group;
+    group.first = static_cast<std::uint32_t>(cells_.size());
+    label_[start] = g;
+    GRIP_ASSERT(cells_.push_back(start));  // sized to the grid
+    for (std::size_t head = group.first; head < cells_.size(); ++head) {
+      const std::uint32_t c = cells_[head];
+      const int cx = static_cast<int>(c % w);
+      const int cy = static_cast<int>(c / w);
+      for (int ny = cy - 1; ny <= cy + 1; ++ny) {
+        for (int nx = cx - 1; nx <= cx + 1; ++nx) {
+          if (!grid.in_bounds(nx, ny)) continue;
+          const std::uint32_t nc = grid.index(nx, ny);
+          if (label_[nc] != kUnlabelled) continue;
+          label_[nc] = g;
+          GRIP_ASSERT(cells_.push_back(nc));
+        }
+      }
+    }
+    group.size = static_cast<std::uint32_t>(cells_.size()) - group.first;
+    GRIP_ASSERT(groups_.push_back(group));  // sized for one group per 2x2 block
+  }
+}
+
+template <typename Visit>
+void FrontierMap::for_each_approach(const OccupancyGrid& grid, int cx, int cy,
+                                    Visit&& visit) const noexcept {
+  for (const Offset& o : window_) {
+    const int x = cx + o.dx;
+    const int y = cy + o.dy;
+    if (!grid.in_bounds(x, y)) continue;
+    const std::uint32_t c = grid.index(x, y);
+    const std::uint32_t cost = field_.cost_at(c);
+    if (cost == kUnreachable) continue;
+    visit(c, x, y, cost + o.cost);
+  }
+}
+
+void FrontierMap::seed_robot_field(const OccupancyGrid& grid, int robot_cx, int robot_cy) noexcept {
+  seeds_.clear();
+  GRIP_ASSERT(seeds_.push_back(grid.index(robot_cx, robot_cy)));
+  for (const Offset& o : window_) {
+    const int x = robot_cx + o.dx;
+    const int y = robot_cy + o.dy;
+    if (o.cost == 0 || !grid.in_bounds(x, y)) continue;
+    const std::uint32_t c = grid.index(x, y);
+    if (field_.traversable(c) && detail::in_sight(grid, robot_cx, robot_cy, x, y)) {
+      GRIP_ASSERT(seeds_.push_back(c));  // at most the window's size, < cells
+    }
+  }
+}
+
+void FrontierMap::measure_group(const OccupancyGrid& grid, FrontierGroup& group) noexcept {
+  // Per cell: the cheapest chassis cell in its window, in sight. Candidates that cannot improve
+  // on the best so far skip the sight test, which is the only costly part.
+  const auto w = static_cast<std::uint32_t>(width_);
+  std::uint32_t best = kUnreachable;
+  for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
+    const std::uint32_t c = cells_[i];
+    const int cx = static_cast<int>(c % w);
+    const int cy = static_cast<int>(c / w);
+    for_each_approach(grid, cx, cy, [&](std::uint32_t, int x, int y, std::uint32_t cost) {
+      if (cost >= best || !detail::in_sight(grid, x, y, cx, cy)) return;
+      best = cost;
+      group.nearest_cell = c;
+    });
+  }
+  group.rho_m = best == kUnreachable ? std::numeric_limits<double>::infinity()
+                                     : best * (resolution_ / DistanceField::kCostUnitsPerCell);
+  group.score_m = std::numeric_limits<double>::infinity();
+}
+
+void FrontierMap::collect_approach_cells(const OccupancyGrid& grid,
+                                         const FrontierGroup& group) noexcept {
+  if (++generation_ == 0) {  // wrapped: old stamps could alias the new generation
+    std::fill(stamp_.begin(), stamp_.end(), 0U);
+    generation_ = 1;
+  }
+  const auto w = static_cast<std::uint32_t>(width_);
+  for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
+    const std::uint32_t c = cells_[i];
+    const int cx = static_cast<int>(c % w);
+    const int cy = static_cast<int>(c / w);
+    for_each_approach(grid, cx, cy, [&](std::uint32_t a, int x, int y, std::uint32_t) {
+      if (stamp_[a] == generation_ || !detail::in_sight(grid, x, y, cx, cy)) return;
+      stamp_[a] = generation_;
+      GRIP_ASSERT(approach_.push_back(a));  // each cell once: at most the grid
+    });
+  }
+}
+
+}  // namespace grip

@@ -1,0 +1,209 @@
+#include "grip/exploration/path_selector.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <string>
+
+#include "../world/validation.hpp"
+#include "sight_line.hpp"
+
+namespace grip {
+
+Status PathSelectionConfig::validate() const {
+  const auto bad = [](const char* name, double value, const char* rule) -> Status {
+    return invalid_argument(std::string("path selection: ") + name + " must be " + rule + " (got " +
+                            detail::format_number(value) + ")");
+  };
+  if (!(std::isfinite(sensing_radius_m) && sensing_radius_m > 0.0)) {
+    return bad("sensing_radius_m", sensing_radius_m, "finite and > 0");
+  }
+  if (!(std::isfinite(length_weight_per_m) && length_weight_per_m >= 0.0)) {
+    return bad("length_weight_per_m", length_weight_per_m, "finite and >= 0");
+  }
+  if (!(std::isfinite(sample_step_s) && sample_step_s > 0.0)) {
+    return bad("sample_step_s", sample_step_s, "finite and > 0");
+  }
+  return Ok{};
+}
+
+Result<PathSelector> PathSelector::create(int width_cells, int height_cells, double resolution_m,
+                                          std::uint32_t max_edges,
+                                          const PathSelectionConfig& config) {
+  if (auto error =
+          detail::check_grid_size("PathSelector", width_cells, height_cells, resolution_m)) {
+    return *std::move(error);
+  }
+  if (auto s = config.validate(); !s) return s.error();
+  if (max_edges == 0) return invalid_argument("PathSelector: max_edges must be > 0 (got 0)");
+  return PathSelector(width_cells, height_cells, resolution_m, max_edges, config);
+}
+
+PathSelector::PathSelector(int width_cells, int height_cells, double resolution_m,
+                           std::uint32_t max_edges, const PathSelectionConfig& config)
+    : width_(width_cells),
+      height_(height_cells),
+      resolution_(resolution_m),
+      max_edges_(max_edges),
+      config_(config),
+      seen_(static_cast<std::size_t>(width_cells) * static_cast<std::size_t>(height_cells)),
+      seen_list_(seen_.capacity()),
+      d_(static_cast<std::size_t>(max_edges) * kMaxTargetCells),
+      length_(max_edges),
+      stack_(max_edges) {
+  for (std::size_t c = 0; c < seen_.capacity(); ++c) GRIP_ASSERT(seen_.push_back(0));
+  for (std::size_t i = 0; i < d_.capacity(); ++i) GRIP_ASSERT(d_.push_back(0.0F));
+  for (std::size_t e = 0; e < length_.capacity(); ++e) GRIP_ASSERT(length_.push_back(0.0));
+}
+
+void PathSelector::set_target(const OccupancyGrid& grid,
+                              std::span<const std::uint32_t> cells) noexcept {
+  GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
+              grid.resolution() == resolution_);
+  for (const std::uint32_t c : seen_list_) seen_[c] = 0;
+  seen_list_.clear();
+  targets_.clear();
+  origin_x_m_ = grid.origin_x();
+  origin_y_m_ = grid.origin_y();
+  // Evenly spread: the i-th of n picks sits at (2i + 1) / 2n along the list, so that both ends
+  // of a short frontier are represented as well as its middle.
+  const std::size_t n = std::min<std::size_t>(cells.size(), kMaxTargetCells);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t c = cells[(2 * i + 1) * cells.size() / (2 * n)];
+    GRIP_ASSERT(c < grid.cell_count());
+    GRIP_ASSERT(targets_.push_back(c));
+    target_x_m_[i] = grid.cell_center_x(grid.cell_x(c));
+    target_y_m_[i] = grid.cell_center_y(grid.cell_y(c));
+    cast_rays_from(grid, static_cast<std::uint32_t>(i));
+  }
+}
+
+void PathSelector::cast_rays_from(const OccupancyGrid& grid, std::uint32_t target_bit) noexcept {
+  const std::uint32_t target = targets_[target_bit];
+  const int tx = grid.cell_x(target);
+  const int ty = grid.cell_y(target);
+  const double range_cells = config_.sensing_radius_m / resolution_;
+  const double range2 = range_cells * range_cells;
+  const int r = static_cast<int>(std::ceil(range_cells));
+  const std::uint32_t bit = 1U << target_bit;
+  const auto walk = [&](int px, int py) {
+    detail::trace_cells(tx, ty, px, py, [&](int x, int y) {
+      const double dx = x - tx;
+      const double dy = y - ty;
+      if (dx * dx + dy * dy > range2 || grid.at(x, y) != Cell::kFree) return false;
+      const std::uint32_t c = grid.index(x, y);
+      if (seen_[c] == 0) GRIP_ASSERT(seen_list_.push_back(c));  // each cell once
+      seen_[c] |= bit;
+      return true;
+    });
+  };
+  // Every cell of the border of the square of half-side r, once.
+  for (int i = -r; i < r; ++i) {
+    walk(tx + i, ty - r);
+    walk(tx + r, ty + i);
+    walk(tx - i, ty + r);
+    walk(tx - r, ty - i);
+  }
+}
+
+template <VehicleModel V>
+PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_step) noexcept {
+  const auto& tree = planner.tree();
+  GRIP_ASSERT(tree.edge_capacity() <= max_edges_);
+  const DistanceField& rho = planner.rho_field();
+  GRIP_ASSERT(rho.width() == width_ && rho.height() == height_);
+  const auto targets = static_cast<std::uint32_t>(targets_.size());
+  const auto d_max = static_cast<float>(config_.sensing_radius_m);
+  const double lambda = config_.length_weight_per_m;
+  const double inv_resolution = 1.0 / resolution_;
+  const auto stride = std::max<int>(
+      1, static_cast<int>(std::lround(config_.sample_step_s / planner.config().record_step_s())));
+
+  // Both candidates are tracked in one pass; which one counts is known only at its end.
+  PathChoice by_sight;
+  PathChoice by_rho;
+  bool seen_any = false;
+
+  // Folds the state at (x, y) into the vector d and its sum. Most states see nothing (one mask
+  // read); a seen target costs a squared distance, and a square root only when it improves.
+  const auto fold = [&](float* d, double& d_sum, double x, double y) {
+    const double u = (x - origin_x_m_) * inv_resolution;
+    const double v = (y - origin_y_m_) * inv_resolution;
+    if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) return;
+    std::uint32_t mask = seen_[static_cast<std::uint32_t>(v) * static_cast<std::uint32_t>(width_) +
+                               static_cast<std::uint32_t>(u)];
+    seen_any = seen_any || mask != 0;
+    for (; mask != 0; mask &= mask - 1) {
+      const auto i = static_cast<std::uint32_t>(std::countr_zero(mask));
+      const double dx = x - target_x_m_[i];
+      const double dy = y - target_y_m_[i];
+      const double old = static_cast<double>(d[i]);
+      if (dx * dx + dy * dy >= old * old) continue;
+      const auto distance = static_cast<float>(std::sqrt(dx * dx + dy * dy));
+      d_sum += static_cast<double>(distance) - old;
+      d[i] = distance;
+    }
+  };
+  // One exponential per state serves both candidates: w = d exp(lambda l).
+  const auto offer = [&](EdgeHandle e, std::uint16_t k, double x, double y, double d_sum,
+                         double length) {
+    if (tree.step_of(e, k) < min_step) return;
+    const double growth = std::exp(lambda * length);
+    const double by_sight_weight = d_sum * growth;
+    if (by_sight_weight < by_sight.weight) {
+      by_sight = PathChoice{TreeState{e, k}, d_sum, length, by_sight_weight, true};
+    }
+    const double rho_end = rho.distance_m(x, y);
+    const double by_rho_weight = rho_end * growth;
+    if (by_rho_weight < by_rho.weight) {
+      by_rho = PathChoice{TreeState{e, k}, rho_end, length, by_rho_weight, false};
+    }
+  };
+
+  stack_.clear();
+  GRIP_ASSERT(stack_.push_back(tree.root()));
+  while (!stack_.empty()) {
+    const EdgeHandle e = stack_.back();
+    stack_.pop_back();
+    for (EdgeHandle c = tree.edge(e).first_child; c != kNoHandle; c = tree.edge(c).next_sibling) {
+      GRIP_ASSERT(stack_.push_back(c));  // every edge once: at most the edge pool
+    }
+    const Edge& edge = tree.edge(e);
+    float* d = d_.data() + static_cast<std::size_t>(e) * kMaxTargetCells;
+    double length = 0.0;
+    if (edge.parent == kNoHandle) {
+      std::fill(d, d + targets, d_max);
+    } else {
+      const float* from = d_.data() + static_cast<std::size_t>(edge.parent) * kMaxTargetCells;
+      std::copy(from, from + targets, d);
+      length = length_[edge.parent];
+    }
+    double d_sum = 0.0;
+    for (std::uint32_t i = 0; i < targets; ++i) d_sum += static_cast<double>(d[i]);
+    // The root edge holds one state; any other edge's first state is its parent's last.
+    const auto& first = tree.edge_state(e, edge.first);
+    double px = state_x(first);
+    double py = state_y(first);
+    int k = edge.parent == kNoHandle ? edge.last : std::min<int>(edge.first + stride, edge.last);
+    for (;;) {
+      const auto& q = tree.edge_state(e, static_cast<std::uint16_t>(k));
+      const double x = state_x(q);
+      const double y = state_y(q);
+      length += std::sqrt((x - px) * (x - px) + (y - py) * (y - py));
+      px = x;
+      py = y;
+      fold(d, d_sum, x, y);
+      offer(e, static_cast<std::uint16_t>(k), x, y, d_sum, length);
+      if (k == edge.last) break;
+      k = std::min<int>(k + stride, edge.last);
+    }
+    length_[e] = length;
+  }
+  return seen_any ? by_sight : by_rho;
+}
+
+template PathChoice PathSelector::select(const Planner<DdVelocity>&, std::uint32_t) noexcept;
+template PathChoice PathSelector::select(const Planner<DdAcceleration>&, std::uint32_t) noexcept;
+template PathChoice PathSelector::select(const Planner<Car>&, std::uint32_t) noexcept;
+
+}  // namespace grip

@@ -1,0 +1,235 @@
+// Frontier detection, grouping by flood fill, reachability for the chassis and the choice of
+// the target group, on small hand-made grids (0.1 m cells).
+
+#include "grip/exploration/frontier.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace grip {
+namespace {
+
+class FrontierTest : public ::testing::Test {
+ protected:
+  std::optional<OccupancyGrid> grid;
+  std::optional<ClearanceMap> clearance;
+  std::optional<FrontierMap> frontiers;
+  FrontierConfig config;
+
+  void make_grid(int width, int height, Cell fill) {
+    grid.emplace(OccupancyGrid::create(width, height, 0.1, 0.0, 0.0, fill).value());
+  }
+  ExplorationStatus update(double robot_x, double robot_y) {
+    if (!frontiers) {
+      frontiers.emplace(FrontierMap::create(grid->width(), grid->height(), 0.1, config).value());
+    }
+    clearance.emplace(ClearanceMap::create_for(*grid).value());
+    return frontiers->update(*grid, *clearance, robot_x, robot_y);
+  }
+  std::uint32_t group_size(std::uint32_t g) const { return frontiers->groups()[g].size; }
+  // A room of free space walled by obstacles, inside an unknown grid.
+  void walled_room(double x0, double y0, double x1, double y1) {
+    grid->fill_rect(x0, y0, x1, y1, Cell::kObstacle);
+    grid->fill_rect(x0 + 0.3, y0 + 0.3, x1 - 0.3, y1 - 0.3, Cell::kFree);
+  }
+};
+
+TEST_F(FrontierTest, FreeCellsBesideUnknownFormOneGroupPerConnectedStretch) {
+  // GIVEN known free space below y = 2.5 and unknown above, with an obstacle on the border
+  // between x = 3 and 4.5 that splits the frontier in two.
+  make_grid(80, 40, Cell::kUnknown);
+  grid->fill_rect(0.0, 0.0, 8.0, 2.5, Cell::kFree);
+  grid->fill_rect(2.98, 2.32, 4.52, 2.6, Cell::kObstacle);
+  // WHEN the frontier is computed
+  ASSERT_EQ(update(1.0, 1.0), ExplorationStatus::kTarget);
+  // THEN the top free row left and right of the obstacle are two groups.
+  ASSERT_EQ(frontiers->groups().size(), 2U);
+  EXPECT_EQ(group_size(0), 30U);
+  EXPECT_EQ(group_size(1), 35U);
+  for (const std::uint32_t c : frontiers->group_cells(0)) {
+    EXPECT_EQ(grid->cell_y(c), 24);
+    EXPECT_LT(grid->cell_x(c), 30);
+  }
+  EXPECT_EQ(frontiers->frontier_cells().size(), 65U);
+}
+
+TEST_F(FrontierTest, ADiagonalStaircaseIsOneGroupAndCornerContactIsNoFrontier) {
+  // Free where x + y < 15: the boundary cells touch each other only at corners.
+  make_grid(20, 20, Cell::kUnknown);
+  for (int y = 0; y < 20; ++y) {
+    for (int x = 0; x < 20; ++x) {
+      if (x + y < 15) grid->set(x, y, Cell::kFree);
+    }
+  }
+  (void)update(0.05, 0.05);
+  ASSERT_EQ(frontiers->groups().size(), 1U);
+  EXPECT_EQ(group_size(0), 15U);  // x + y == 14; x + y == 13 touches unknown at a corner only
+  for (const std::uint32_t c : frontiers->frontier_cells()) {
+    EXPECT_EQ(grid->cell_x(c) + grid->cell_y(c), 14);
+  }
+}
+
+TEST_F(FrontierTest, AFullyKnownMapIsCompleteAndSaysSo) {
+  make_grid(60, 60, Cell::kObstacle);
+  walled_room(0.0, 0.0, 6.0, 6.0);
+  EXPECT_EQ(update(3.0, 3.0), ExplorationStatus::kComplete);
+  EXPECT_EQ(frontiers->status(), ExplorationStatus::kComplete);
+  EXPECT_TRUE(frontiers->groups().empty());
+  EXPECT_EQ(frontiers->target(), FrontierMap::kNoGroup);
+  EXPECT_TRUE(frontiers->approach_cells().empty());
+  EXPECT_TRUE(frontiers->target_cells().empty());
+}
+
+TEST_F(FrontierTest, AFrontierBehindAClosedWallIsNotReachable) {
+  // The robot's room, and beyond its right wall free space seen through it, open to unknown.
+  make_grid(100, 60, Cell::kUnknown);
+  walled_room(0.0, 0.0, 5.0, 6.0);
+  grid->fill_rect(5.0, 0.3, 8.0, 5.7, Cell::kFree);
+  ASSERT_FALSE(frontiers.has_value());
+  EXPECT_EQ(update(2.0, 3.0), ExplorationStatus::kComplete);
+  ASSERT_FALSE(frontiers->groups().empty());
+  for (const FrontierGroup& g : frontiers->groups()) EXPECT_FALSE(g.reachable());
+}
+
+TEST_F(FrontierTest, AFrontierBehindAGapTooNarrowForTheChassisIsNotReachable) {
+  const auto with_gap = [this](double gap_m) {
+    make_grid(100, 60, Cell::kUnknown);
+    walled_room(0.0, 0.0, 5.0, 6.0);
+    grid->fill_rect(5.0, 0.3, 8.0, 5.7, Cell::kFree);
+    grid->fill_rect(4.65, 3.0 - gap_m / 2, 5.05, 3.0 + gap_m / 2, Cell::kFree);
+    return update(2.0, 3.0);
+  };
+  // 0.4 m: the reference point needs 0.3 m of clearance on both sides.
+  EXPECT_EQ(with_gap(0.4), ExplorationStatus::kComplete);
+  // 1.2 m: through.
+  ASSERT_EQ(with_gap(1.2), ExplorationStatus::kTarget);
+  const FrontierGroup& target = frontiers->groups()[frontiers->target()];
+  EXPECT_GT(target.rho_m, 3.0);  // from x = 2 through the gap at x = 4.85
+  EXPECT_LT(target.rho_m, 7.5);
+  EXPECT_GE(grid->cell_x(target.nearest_cell), 50);  // beyond the wall
+}
+
+TEST_F(FrontierTest, ApproachCellsAreChassisCellsNearTheTargetAndReachable) {
+  make_grid(100, 60, Cell::kObstacle);
+  walled_room(0.0, 0.0, 10.0, 6.0);
+  grid->fill_rect(7.0, 2.0, 7.5, 3.0, Cell::kUnknown);  // an unknown pocket in the room
+  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  ASSERT_FALSE(frontiers->approach_cells().empty());
+  const std::span<const std::uint32_t> target = frontiers->target_cells();
+  for (const std::uint32_t a : frontiers->approach_cells()) {
+    EXPECT_TRUE(frontiers->robot_field().reachable(a));
+    EXPECT_TRUE(frontiers->robot_field().traversable(a));
+    double nearest = 1e9;
+    for (const std::uint32_t c : target) {
+      nearest = std::min(nearest, std::hypot(grid->cell_x(a) - grid->cell_x(c),
+                                             grid->cell_y(a) - grid->cell_y(c)));
+    }
+    EXPECT_LE(nearest * 0.1, config.approach_range_m + 1e-9);
+  }
+  // Each once.
+  std::vector<std::uint32_t> sorted(frontiers->approach_cells().begin(),
+                                    frontiers->approach_cells().end());
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
+}
+
+class FrontierTargetTest : public FrontierTest {
+ protected:
+  // A 10 m x 6 m walled room, fully known but for unknown blocks: a block of a x b cells is
+  // ringed by 2 (a + b) frontier cells, one group.
+  void room() {
+    make_grid(100, 60, Cell::kObstacle);
+    walled_room(0.0, 0.0, 10.0, 6.0);
+  }
+  void unknown_block(double x, double y, double w, double h) {
+    grid->fill_rect(x + 0.01, y + 0.01, x + w - 0.01, y + h - 0.01, Cell::kUnknown);
+  }
+  std::uint32_t target_size() const { return group_size(frontiers->target()); }
+};
+
+TEST_F(FrontierTargetTest, ACloseSmallGroupIsPreferredOverAFarBigOne) {
+  room();
+  unknown_block(3.0, 2.9, 0.2, 0.2);  // 8 frontier cells, 1.5 m from the robot
+  unknown_block(8.0, 1.0, 1.0, 2.0);  // 60 frontier cells, 6.5 m away
+  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  ASSERT_EQ(frontiers->groups().size(), 2U);
+  EXPECT_EQ(target_size(), 8U);
+}
+
+TEST_F(FrontierTargetTest, ASmallGroupAlittleFartherStillWinsUnlessSizeIsIgnored) {
+  room();
+  unknown_block(6.0, 2.9, 0.2, 0.2);  // small, about 4 m away
+  unknown_block(4.0, 1.0, 1.0, 2.0);  // big, about 2 m away
+  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  EXPECT_EQ(target_size(), 8U);
+  const auto& groups = frontiers->groups();
+  const FrontierGroup& small = groups[0].size == 8 ? groups[0] : groups[1];
+  const FrontierGroup& big = groups[0].size == 8 ? groups[1] : groups[0];
+  EXPECT_GT(small.rho_m, big.rho_m);
+  EXPECT_LT(small.score_m, big.score_m);
+
+  // Without the size term the nearer, bigger group wins.
+  config.size_weight = 0.0;
+  frontiers.reset();
+  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  EXPECT_EQ(target_size(), 60U);
+}
+
+TEST_F(FrontierTargetTest, TiesGoToTheGroupWithTheLowestCellIndex) {
+  room();
+  // Mirror images about the robot's column: same size, same distance.
+  unknown_block(3.0, 2.0, 0.2, 0.2);
+  unknown_block(6.9, 2.0, 0.2, 0.2);
+  for (int run = 0; run < 2; ++run) {
+    ASSERT_EQ(update(5.05, 3.0), ExplorationStatus::kTarget);
+    ASSERT_EQ(frontiers->groups().size(), 2U);
+    EXPECT_DOUBLE_EQ(frontiers->groups()[0].score_m, frontiers->groups()[1].score_m);
+    EXPECT_EQ(frontiers->target(), 0U);
+    EXPECT_LT(grid->cell_x(frontiers->target_cells()[0]), 50);
+  }
+}
+
+TEST_F(FrontierTargetTest, GroupsBelowTheMinimumSizeAreIgnored) {
+  room();
+  unknown_block(3.0, 2.9, 0.1, 0.1);  // a single unknown cell: 4 frontier cells
+  config.min_group_cells = 5;
+  EXPECT_EQ(update(1.5, 3.0), ExplorationStatus::kComplete);
+  config.min_group_cells = 4;
+  frontiers.reset();
+  EXPECT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+}
+
+TEST_F(FrontierTest, ARobotNearAWallStillReachesTheOpenSpace) {
+  // 0.15 m from the wall: its own cell is not a chassis cell under 0.3 m clearance.
+  make_grid(100, 60, Cell::kObstacle);
+  walled_room(0.0, 0.0, 10.0, 6.0);
+  grid->fill_rect(8.0, 2.0, 8.5, 3.0, Cell::kUnknown);
+  EXPECT_EQ(update(0.45, 3.0), ExplorationStatus::kTarget);
+}
+
+TEST_F(FrontierTest, ARobotOutsideTheGridHasNoTarget) {
+  make_grid(20, 20, Cell::kFree);
+  EXPECT_EQ(update(-1.0, 0.5), ExplorationStatus::kRobotOutsideGrid);
+  EXPECT_EQ(frontiers->target(), FrontierMap::kNoGroup);
+}
+
+TEST(FrontierConfigTest, BadValuesAreRefusedByName) {
+  FrontierConfig config;
+  config.approach_range_m = 0.3;  // not beyond the clearance
+  const auto made = FrontierMap::create(10, 10, 0.1, config);
+  ASSERT_FALSE(made.ok());
+  EXPECT_NE(made.error().message.find("approach_range_m"), std::string::npos);
+  config = FrontierConfig{};
+  config.size_weight = -1.0;
+  EXPECT_FALSE(FrontierMap::create(10, 10, 0.1, config).ok());
+  config = FrontierConfig{};
+  config.min_group_cells = 0;
+  EXPECT_FALSE(FrontierMap::create(10, 10, 0.1, config).ok());
+  EXPECT_FALSE(FrontierMap::create(0, 10, 0.1, FrontierConfig{}).ok());
+}
+
+}  // namespace
+}  // namespace grip
