@@ -9,5 +9,7 @@ void register_scene_command(CLI::App& app);
 void register_plan_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_stress_command(CLI::App& app);
+// `grip bench ompl`, registered on `bench` (tools/ompl; a stub there when built without OMPL).
+void register_bench_ompl_command(CLI::App& bench);
 
 }  // namespace grip::tools
