@@ -63,8 +63,9 @@ void draw_panel(cairo_t* cr, const std::vector<std::string>& series, const BarPa
       if (std::isfinite(v) && v > 0.0) lo = std::min(lo, v);
     }
   }
-  const double log_lo = std::floor(std::log10(lo)) - (lo == panel.y_max ? 1.0 : 0.0);
-  const double log_hi = std::log10(panel.y_max);
+  // Half a decade of room below the smallest bar and above the cap (for the notes).
+  const double log_lo = std::floor(std::log10(lo) - 0.5);
+  const double log_hi = std::log10(panel.y_max) + 0.5;
   const auto y_of = [&](double v) {
     const double f = (std::log10(v) - log_lo) / std::max(log_hi - log_lo, 1e-9);
     return plot_bottom - std::clamp(f, 0.0, 1.0) * plot_h;
@@ -74,7 +75,7 @@ void draw_panel(cairo_t* cr, const std::vector<std::string>& series, const BarPa
   text(cr, panel.title, kLeft, y0 + 24.0, 16.0, true);
   // Grid lines at the decades, the axis label.
   cairo_set_line_width(cr, 1.0);
-  for (double d = std::ceil(log_lo); d <= log_hi + 1e-9; d += 1.0) {
+  for (double d = std::ceil(log_lo); d <= std::log10(panel.y_max) + 1e-9; d += 1.0) {
     const double y = y_of(std::pow(10.0, d));
     cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
     cairo_move_to(cr, kLeft, y);

@@ -42,6 +42,7 @@ struct BenchOmplOptions {
   std::vector<std::string> planners = ompl_bridge::all_planners();
   std::string json;
   std::string png = "grip-bench-ompl.png";
+  std::string from_json;  // report on the runs of an earlier --json instead of running
 };
 
 struct Child {
@@ -168,7 +169,19 @@ int run_bench_ompl(const BenchOmplOptions& o) {
     std::cout << "  " << key << ": "
               << (value.is_string() ? value.get<std::string>() : value.dump()) << "\n";
   }
-  const std::vector<RunResult> runs = run_all(specs, o.jobs);
+  std::vector<RunResult> runs;
+  if (o.from_json.empty()) {
+    runs = run_all(specs, o.jobs);
+  } else {
+    std::ifstream in(o.from_json);
+    const nlohmann::json earlier = nlohmann::json::parse(in, nullptr, false);
+    if (!in || earlier.is_discarded() || !earlier.contains("runs")) {
+      std::cerr << "grip bench ompl: cannot read runs from '" << o.from_json << "'\n";
+      return 1;
+    }
+    for (const auto& r : earlier.at("runs")) runs.push_back(ompl_bridge::run_result_from_json(r));
+    std::cout << "(the " << runs.size() << " runs of " << o.from_json << ", not run again)\n";
+  }
   const auto summaries = ompl_bridge::summarize_runs(runs, o.planners);
   const auto targets = ompl_bridge::check_targets(runs, summaries);
 
@@ -246,6 +259,10 @@ void register_bench_ompl_command(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_option("--json", o->json, "Write the runs, summary and targets as JSON");
   cmd->add_option("--png", o->png, "The bar chart (empty: none)")->capture_default_str();
+  cmd->add_option("--from-json", o->from_json,
+                  "Report on the runs of an earlier --json file instead of running them "
+                  "(give the same --seeds and --time-limit)")
+      ->check(CLI::ExistingFile);
   cmd->callback([o]() {
     if (const int rc = run_bench_ompl(*o); rc != 0) throw CLI::RuntimeError(rc);
   });
