@@ -278,7 +278,8 @@ void register_bench_command(CLI::App& app) {
   paper->callback([o]() {
     if (const int rc = run_bench_paper(*o); rc != 0) throw CLI::RuntimeError(rc);
   });
-  register_bench_dds_command(bench);
+  register_bench_dds_command(*bench);
+  register_bench_ompl_command(*bench);
 }
 
 }  // namespace grip::tools

@@ -284,9 +284,9 @@ int run_bench_dds(const BenchDdsOptions& o) {
 
 }  // namespace
 
-void register_bench_dds_command(CLI::App* bench) {
+void register_bench_dds_command(CLI::App& bench) {
   auto o = std::make_shared<BenchDdsOptions>();
-  CLI::App* cmd = bench->add_subcommand(
+  CLI::App* cmd = bench.add_subcommand(
       "dds", "Plan delivery latency planner -> subscriber on loopback, against ddsperf ping-pong");
   cmd->add_option("--duration", o->duration_s, "Seconds of each measurement")
       ->capture_default_str();

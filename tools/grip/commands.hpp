@@ -10,7 +10,9 @@ void register_plan_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_stress_command(CLI::App& app);
 void register_planner_command(CLI::App& app);
-// Benchmarks under `grip bench` besides `paper`.
-void register_bench_dds_command(CLI::App* bench);
+// Benchmarks registered on `bench` besides `paper`: `dds`, and `ompl` (tools/ompl; a stub
+// there when built without OMPL).
+void register_bench_dds_command(CLI::App& bench);
+void register_bench_ompl_command(CLI::App& bench);
 
 }  // namespace grip::tools

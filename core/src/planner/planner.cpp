@@ -54,12 +54,8 @@ Result<Planner<V>> Planner<V>::create(const V& vehicle, const OccupancyGrid& gri
   if (auto s = config.validate(); !s) return s.error();
   // Chassis checks happen every integration step; inflating the footprint by half the largest
   // motion between two checks makes them cover the continuous trajectory.
-  const double dt = config.integration_step_s;
-  const Footprint& f = vehicle.footprint();
-  const double reach = std::hypot(std::max(f.front_m, f.rear_m), f.half_width_m);
-  const double margin =
-      0.5 * (vehicle.max_speed_m_s() * dt + reach * vehicle.max_turn_rate_rad_s() * dt);
-  auto checker = CollisionChecker::create(grid, f, margin);
+  auto checker = CollisionChecker::create(
+      grid, vehicle.footprint(), step_collision_margin_m(vehicle, config.integration_step_s));
   if (!checker) return checker.error();
   auto field = DistanceField::create(grid.width(), grid.height(), grid.resolution());
   if (!field) return field.error();

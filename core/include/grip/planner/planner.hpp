@@ -21,6 +21,7 @@
 #include "grip/memory/indexed_min_heap.hpp"
 #include "grip/planner/contingency.hpp"
 #include "grip/planner/planner_config.hpp"
+#include "grip/planner/step_margin.hpp"
 #include "grip/planner/tree.hpp"
 #include "grip/vehicles/car.hpp"
 #include "grip/vehicles/dd_acceleration.hpp"
