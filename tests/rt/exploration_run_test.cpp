@@ -3,8 +3,6 @@
 // chooses the frontier target and the path of section 3 every cycle, runs the replanning cycle
 // on a fake clock and drives the vehicle along the committed plan for T. The small room must be
 // explored (coverage of the reachable free space) without a collision and in bounded cycles.
-// The disabled BuiltInScenes tests run every built-in scene with every vehicle and print the
-// figures (--gtest_also_run_disabled_tests).
 
 #include <gtest/gtest.h>
 
@@ -12,14 +10,12 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <tuple>
 
 #include "grip/exploration/frontier.hpp"
 #include "grip/exploration/path_selector.hpp"
 #include "grip/planner/contingency.hpp"
 #include "grip/rt/replanning_cycle.hpp"
-#include "grip/scenes/scenes.hpp"
-#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/vehicles/dd_velocity.hpp"
 
 namespace grip::rt {
 namespace {
@@ -188,39 +184,6 @@ TEST(ExplorationRun, AVelocityControlledRobotExploresASmallSceneWithoutCollision
   EXPECT_EQ(r.collisions, 0);
   EXPECT_GE(r.coverage, 0.97);
 }
-
-// One scene with one vehicle per test, so that a single pair can be run:
-// --gtest_also_run_disabled_tests --gtest_filter='*BuiltInScenes*meandros_dd_vel'.
-class BuiltInScenes : public ::testing::TestWithParam<std::tuple<SceneId, VehicleKind>> {};
-
-// Falls short today (coverage 0.64 after 3000 cycles, no collision): kept as the tool to tune
-// the car's exploration with.
-TEST(ExplorationRun, DISABLED_CarSmallScene) {
-  const Car car = Car::create({}).value();
-  print("small", "car", explore(car, small_scene(), 1.5, 1.5, 0.0, 3000));
-}
-
-TEST_P(BuiltInScenes, Explore) {
-  const auto [id, kind] = GetParam();
-  const Scene scene = make_scene(id).value();
-  const ExplorationReport r = with_default_vehicle(kind, [&](const auto& vehicle) {
-    return explore(vehicle, scene.grid, scene.start_x_m, scene.start_y_m, scene.start_theta_rad,
-                   6000);
-  });
-  print(scene.name.c_str(), std::string(vehicle_name(kind)).c_str(), r);
-}
-
-INSTANTIATE_TEST_SUITE_P(
-    DISABLED_Exploration, BuiltInScenes,
-    ::testing::Combine(::testing::ValuesIn(all_scenes().begin(), all_scenes().end()),
-                       ::testing::Values(VehicleKind::kDdVelocity, VehicleKind::kDdAcceleration,
-                                         VehicleKind::kCar)),
-    [](const auto& test) {
-      std::string name = std::string(scene_name(std::get<0>(test.param))) + "_" +
-                         std::string(vehicle_name(std::get<1>(test.param)));
-      std::replace(name.begin(), name.end(), '-', '_');
-      return name;
-    });
 
 }  // namespace
 }  // namespace grip::rt
