@@ -104,8 +104,9 @@ CycleOutcome ReplanningCycle<V>::run(
   CycleOutcome out;
   const std::int64_t cycle_start = now_ns();
   // 1. The new root: T along the committed plan, when the plan covers T.
-  const TreeState next_root =
-      committed_.edge != kNoHandle ? planner_.state_at_step(committed_, cycle_steps_) : TreeState{};
+  const TreeState next_root = committed_.edge != kNoHandle && !resync_
+                                  ? planner_.state_at_step(committed_, cycle_steps_)
+                                  : TreeState{};
   if (next_root.edge != kNoHandle) {
     const CellBox* blocked = blocked_noted_ ? &newly_blocked_ : nullptr;
     out.retain_status =
@@ -117,9 +118,11 @@ CycleOutcome ReplanningCycle<V>::run(
     out.retain_status = RetainStatus::kRootNotInTree;
   }
   if (out.retain_status != RetainStatus::kOk) {
-    const State q = next_root.edge != kNoHandle
+    const State q = resync_ ? *resync_
+                    : next_root.edge != kNoHandle
                         ? planner_.tree().edge_state(next_root.edge, next_root.index)
                         : predicted_state_without_plan();
+    resync_.reset();
     out.restarted = true;
     out.retain_status = goal_is_cells_
                             ? planner_.restart(q, GoalCells{goal_cells_.span()}, config_.cycle_s)

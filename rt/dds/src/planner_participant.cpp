@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "goal.h"
+#include "grip/exploration/frontier.hpp"
+#include "grip/exploration/path_selector.hpp"
 #include "grip/platform/clock.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/waitset.hpp"
@@ -52,6 +54,7 @@ struct StateSample {
   std::array<double, 5> state{};
   std::uint64_t stamp_ns = 0;
   std::uint64_t sequence_number = 0;
+  std::uint64_t plan_cycle = 0;
   double time_scale = 1.0;
 };
 
@@ -68,6 +71,11 @@ struct PlanSlot {
 
 struct CycleStatus {
   std::uint64_t cycle = 0;
+  bool exploring = false;
+  bool exploration_complete = false;
+  std::uint32_t frontier_groups = 0;
+  double target_x_m = 0.0;
+  double target_y_m = 0.0;
   std::uint64_t misses = 0;
   std::uint64_t tree_edges = 0;
   std::uint64_t edges_added = 0;
@@ -190,7 +198,9 @@ class PlannerParticipantFor final : public PlannerParticipant {
   void publish_status(const CycleStatus& status);
 
   Status start_up();
-  Status create_cycle(double time_scale);
+  Status create_cycle(double time_scale, bool explore);
+  void choose_frontier_target(bool map_changed) noexcept;
+  void check_vehicle_follows(const StateSample& measured) noexcept;
   std::string progress_line(const PlannerParticipantReport& report) const;
   static State state_of(const StateSample& sample) noexcept {
     State q;
@@ -236,10 +246,22 @@ class PlannerParticipantFor final : public PlannerParticipant {
   // Planning thread only (after start-up).
   std::optional<OccupancyGrid> grid_;
   std::optional<ReplanningCycle<V>> cycle_;
+  // Exploration (section 3), while no goal was given.
+  bool exploring_ = false;
+  bool explored_ = false;
+  std::optional<ClearanceMap> clearance_;
+  std::optional<FrontierMap> frontiers_;
+  std::optional<PathSelector> selector_;
+  double target_x_m_ = 0.0;
+  double target_y_m_ = 0.0;
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
   double time_scale_ = 1.0;
   std::atomic<std::int64_t> period_wall_ns_{0};  // set at start-up, read by the publish thread
   std::uint64_t state_sequence_ = 0;
+  std::uint64_t last_plan_start_ns_ = 0;  // vehicle time of the last plan handed out
+  std::uint64_t plan_start_ns_ = 0;       // vehicle time at which this cycle's plan starts
+  std::uint64_t last_state_stamp_ns_ = 0;
+  std::uint64_t resyncs_ = 0;
   std::uint64_t cycles_ = 0;
   std::uint64_t misses_ = 0;
   std::uint64_t plans_committed_ = 0;
@@ -366,6 +388,7 @@ void PlannerParticipantFor<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleSt
       std::copy(std::begin(msg.state), std::end(msg.state), sample.state.begin());
       sample.stamp_ns = msg.stamp_ns;
       sample.sequence_number = msg.sequence_number;
+      sample.plan_cycle = msg.plan_cycle;
       sample.time_scale = msg.time_scale;
       states_->publish();
     }
@@ -528,11 +551,46 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
                                                   std::int64_t deadline_ns) noexcept {
   const std::int64_t start = platform::now_ns();
   CellBox newly_blocked;
-  if (apply_tiles(newly_blocked)) cycle_->note_newly_blocked(newly_blocked);
-  if (goals_->update()) cycle_->set_goal(goals_->read_buffer());
-  if (states_->update()) state_sequence_ = states_->read_buffer().sequence_number;
+  const bool map_changed = apply_tiles(newly_blocked);
+  if (map_changed) cycle_->note_newly_blocked(newly_blocked);
+  if (goals_->update()) {
+    const GoalRegion& goal = goals_->read_buffer();
+    cycle_->set_goal(goal);  // a goal ends exploration
+    exploring_ = false;
+    target_x_m_ = goal.x_m;
+    target_y_m_ = goal.y_m;
+  }
+  if (states_->update()) check_vehicle_follows(states_->read_buffer());
 
-  const CycleOutcome out = cycle_->run([] { return platform::now_ns(); }, deadline_ns);
+  // The plan starts at t[i], the next release, in vehicle time. Consecutive plans start exactly
+  // T apart, on the vehicle's own integration grid (the stamps of its states), so that each
+  // starts where the one before put the vehicle; the chain is re-anchored when the clocks have
+  // drifted by half a cycle.
+  const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
+  const auto wanted = static_cast<std::uint64_t>(
+      clock_.vehicle_ns(release_ns + period_wall_ns_.load(std::memory_order_relaxed), time_scale_));
+  plan_start_ns_ += cycle_ns;
+  const std::uint64_t drift =
+      plan_start_ns_ > wanted ? plan_start_ns_ - wanted : wanted - plan_start_ns_;
+  if (2 * drift > cycle_ns && last_state_stamp_ns_ != 0) {
+    const double cycles =
+        std::round(static_cast<double>(static_cast<std::int64_t>(wanted - last_state_stamp_ns_)) /
+                   static_cast<double>(cycle_ns));
+    plan_start_ns_ =
+        last_state_stamp_ns_ + static_cast<std::uint64_t>(std::max(0.0, cycles)) * cycle_ns;
+  }
+
+  const auto now = [] { return platform::now_ns(); };
+  CycleOutcome out;
+  if (exploring_) {
+    choose_frontier_target(map_changed);
+    out = cycle_->run(now, deadline_ns, [this](const Planner<V>& planner) {
+      return explored_ ? planner.root_state()
+                       : selector_->select(planner, cycle_->cycle_steps()).state;
+    });
+  } else {
+    out = cycle_->run(now, deadline_ns);
+  }
   ++cycles_;
   const std::int64_t end = platform::now_ns();
   misses_ += end > deadline_ns ? 1 : 0;
@@ -541,8 +599,7 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
     // Planned during (t[i-1], t[i]) for execution from t[i], the next release.
     PlanSlot& slot = plans_->write_buffer();
     slot.cycle = cycles_;
-    slot.start_time_ns = static_cast<std::uint64_t>(clock_.vehicle_ns(
-        release_ns + period_wall_ns_.load(std::memory_order_relaxed), time_scale_));
+    slot.start_time_ns = plan_start_ns_;
     state_to_wire<V>(cycle_->plan_start(), slot.start_state.data(), slot.state_dim);
     slot.state_sequence = state_sequence_;
     const auto& plan = cycle_->plan();
@@ -553,11 +610,17 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
       slot.step[i].duration_s = plan[i].duration_s;
     }
     slot.committed_monotonic_ns = static_cast<std::uint64_t>(platform::now_ns());
+    last_plan_start_ns_ = slot.start_time_ns;
     plans_->publish();
     ++plans_committed_;
   }
   CycleStatus& status = statuses_->write_buffer();
   status.cycle = cycles_;
+  status.exploring = exploring_;
+  status.exploration_complete = explored_;
+  status.frontier_groups = frontiers_ ? static_cast<std::uint32_t>(frontiers_->groups().size()) : 0;
+  status.target_x_m = target_x_m_;
+  status.target_y_m = target_y_m_;
   status.misses = misses_;
   status.tree_edges = out.tree_edges;
   status.edges_added = out.edges_added;
@@ -568,6 +631,52 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
   statuses_->publish();
   wakeup_.signal();
   return out;
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured) noexcept {
+  state_sequence_ = measured.sequence_number;
+  last_state_stamp_ns_ = measured.stamp_ns;
+  // By this stamp the vehicle should be executing a plan. It is not, and it stands still: it
+  // braked (a plan arrived late or did not start where it was), so it is not where the tree
+  // puts it. Plan again from where it stands; it stays there until the next plan starts.
+  const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
+  if (measured.plan_cycle != 0 || last_plan_start_ns_ == 0 ||
+      measured.stamp_ns < last_plan_start_ns_ + cycle_ns) {
+    return;
+  }
+  const State q = state_of(measured);
+  const State& root = cycle_->plan_start();
+  const double off_m = std::hypot(state_x(q) - state_x(root), state_y(q) - state_y(root));
+  const double off_rad = std::abs(wrap_angle(state_theta(q) - state_theta(root)));
+  if (vehicle_.is_stopped(q) && (off_m > 0.02 || off_rad > 0.02)) {
+    cycle_->resynchronise(q);
+    ++resyncs_;
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::choose_frontier_target(bool map_changed) noexcept {
+  // The target is re-chosen every cycle from where the plan starts: the robot moves even when
+  // the map does not change.
+  if (map_changed) clearance_->compute(*grid_);
+  const State& here = cycle_->plan_start();
+  const ExplorationStatus status =
+      frontiers_->update(*grid_, *clearance_, state_x(here), state_y(here));
+  if (status != ExplorationStatus::kTarget) {
+    // No reachable frontier is left (or the robot is off the map): stop where it stands.
+    explored_ = status == ExplorationStatus::kComplete;
+    cycle_->set_goal(GoalRegion{state_x(here), state_y(here), 0.5});
+    return;
+  }
+  explored_ = false;
+  cycle_->set_goal(GoalCells{frontiers_->approach_cells()});
+  selector_->set_target(*grid_, frontiers_->target_cells());
+  const FrontierGroup& group = frontiers_->groups()[frontiers_->target()];
+  if (group.nearest_cell != FrontierGroup::kNoCell) {
+    target_x_m_ = grid_->cell_center_x(grid_->cell_x(group.nearest_cell));
+    target_y_m_ = grid_->cell_center_y(grid_->cell_y(group.nearest_cell));
+  }
 }
 
 // ---- Publish thread ----
@@ -636,6 +745,11 @@ void PlannerParticipantFor<V>::publish_status(const CycleStatus& s) {
   const auto matched = dds_.plans.publication_matched();
   msg.plan_subscribers = matched.ok() ? matched->current_count : 0;
   msg.vehicle_alive = counters_.vehicle_alive.load(std::memory_order_relaxed);
+  msg.exploring = s.exploring;
+  msg.exploration_complete = s.exploration_complete;
+  msg.frontier_groups = s.frontier_groups;
+  msg.target_x_m = s.target_x_m;
+  msg.target_y_m = s.target_y_m;
   static_cast<void>(dds_.status.write(msg));
 }
 
@@ -647,6 +761,7 @@ Status PlannerParticipantFor<V>::start_up() {
   const std::int64_t timeout = config_.startup_timeout.count();
   std::optional<StateSample> state;
   std::optional<GoalRegion> goal;
+  std::optional<std::int64_t> synced_at;  // when the map was first in sync
   std::string refusal;
   while (!stop_.load(std::memory_order_acquire)) {
     if (!grid_ && geometry_ready_.load(std::memory_order_acquire)) {
@@ -662,13 +777,24 @@ Status PlannerParticipantFor<V>::start_up() {
     }
     if (states_->update()) state = states_->read_buffer();
     if (goals_->update()) goal = goals_->read_buffer();
-    if (grid_ && map_in_sync_ && state && goal) {
+    if (grid_ && map_in_sync_ && !synced_at) synced_at = platform::now_ns();
+    // Without a goal within the grace period after the map, the planner explores.
+    const bool explore = !goal && config_.explore_without_goal && synced_at &&
+                         platform::now_ns() - *synced_at >= config_.goal_grace.count();
+    if (grid_ && map_in_sync_ && state && (goal || explore)) {
       if (!cycle_) {
-        if (Status s = create_cycle(state->time_scale); !s) return s;
+        if (Status s = create_cycle(state->time_scale, explore); !s) return s;
       }
-      Status started_cycle = cycle_->start(state_of(*state), *goal);
+      const State q0 = state_of(*state);
+      exploring_ = !goal;
+      // Exploring, the first target is where the vehicle stands; the first cycle picks a frontier.
+      const GoalRegion first = goal ? *goal : GoalRegion{state_x(q0), state_y(q0), 0.5};
+      target_x_m_ = first.x_m;
+      target_y_m_ = first.y_m;
+      Status started_cycle = cycle_->start(q0, first);
       if (started_cycle.ok()) {
         state_sequence_ = state->sequence_number;
+        last_state_stamp_ns_ = state->stamp_ns;
         return Ok{};
       }
       refusal = started_cycle.error().message;  // e.g. the start is not known free yet
@@ -677,7 +803,7 @@ Status PlannerParticipantFor<V>::start_up() {
       std::string missing;
       if (!grid_ || !map_in_sync_) missing += " a map in sync,";
       if (!state) missing += " a vehicle state,";
-      if (!goal) missing += " a goal,";
+      if (!goal && !config_.explore_without_goal) missing += " a goal,";
       if (missing.empty()) missing = " a start the planner accepts (" + refusal + "),";
       missing.pop_back();
       return Error{ErrorCode::kIo, "start-up timed out waiting for" + missing};
@@ -688,7 +814,7 @@ Status PlannerParticipantFor<V>::start_up() {
 }
 
 template <VehicleModel V>
-Status PlannerParticipantFor<V>::create_cycle(double time_scale) {
+Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
   time_scale_ = time_scale;
   const double wall_budget_ms = config_.budget_s * 1e3 / time_scale;
   period_wall_ns_.store(ns_of(config_.cycle_s / time_scale), std::memory_order_relaxed);
@@ -696,6 +822,7 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale) {
   // Whole fractions of T, at most 50 ms per integration step (as `grip stress`).
   planner_config.integration_step_s = config_.cycle_s / std::ceil(config_.cycle_s / 0.05 - 1e-9);
   planner_config.seed = config_.seed;
+  if (config_.no_safety) planner_config.safety = SafetyCheck::kNone;
   planner_config.max_edges =
       config_.max_edges != 0
           ? config_.max_edges
@@ -703,12 +830,39 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale) {
   planner_config.max_trajectories = planner_config.max_edges / 2;
   CycleConfig cycle_config;
   cycle_config.cycle_s = config_.cycle_s;
-  const double margin_ms = config_.margin_s >= 0.0 ? config_.margin_s * 1e3 / time_scale
-                                                   : std::max(2.0, wall_budget_ms / 5.0);
+  double margin_ms = config_.margin_s >= 0.0 ? config_.margin_s * 1e3 / time_scale
+                                             : std::max(2.0, wall_budget_ms / 5.0);
+  // Path selection runs after growth (about 0.5 us per edge here): the margin leaves it room.
+  if (explore) margin_ms += static_cast<double>(planner_config.max_edges) * 0.5e-3;
+  if (margin_ms >= wall_budget_ms) {
+    return invalid_argument(
+        "the budget (" + std::to_string(wall_budget_ms) +
+        " ms of wall clock) leaves no time to grow the tree after a margin of " +
+        std::to_string(margin_ms) + " ms");
+  }
   cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
   auto cycle = ReplanningCycle<V>::create(vehicle_, *grid_, planner_config, cycle_config);
   if (!cycle) return cycle.error();
   cycle_.emplace(std::move(cycle).value());
+
+  // Exploration's fixed memory, sized from the map, also at start-up (a goal may never come).
+  const OccupancyGrid& grid = *grid_;
+  FrontierConfig frontier_config;
+  frontier_config.clearance_m = planner_config.rho_clearance_m;
+  auto frontiers =
+      FrontierMap::create(grid.width(), grid.height(), grid.resolution(), frontier_config);
+  if (!frontiers) return frontiers.error();
+  frontiers_.emplace(std::move(frontiers).value());
+  PathSelectionConfig selection;
+  selection.sensing_radius_m =
+      config_.sensing_radius_m > 0.0 ? config_.sensing_radius_m : grid.width_m() / 10.0;
+  auto selector = PathSelector::create(grid.width(), grid.height(), grid.resolution(),
+                                       planner_config.max_edges, selection);
+  if (!selector) return selector.error();
+  selector_.emplace(std::move(selector).value());
+  auto clearance = ClearanceMap::create_for(grid);
+  if (!clearance) return clearance.error();
+  clearance_.emplace(std::move(clearance).value());
   return Ok{};
 }
 
@@ -770,6 +924,8 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
   report.map_heals = counters_.map_heals.load();
   report.vehicle_losses = counters_.vehicle_losses.load();
   report.map_sequence = map_sequence_;
+  report.explored = explored_;
+  report.resyncs = resyncs_;
   report.map_checksum = map_checksum(*grid_);
   return report;
 }

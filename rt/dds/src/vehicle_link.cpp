@@ -80,6 +80,11 @@ void VehicleLink::publish_map_updates(const CellBox& box, std::uint64_t stamp_ns
   });
 }
 
+void VehicleLink::publish_map_updates(const CellBox& box, std::uint64_t stamp_ns) {
+  const auto keep_all = [](const grip_msg_MapUpdate&) { return false; };
+  publish_map_updates(box, stamp_ns, keep_all);
+}
+
 void VehicleLink::answer_map_requests(std::uint64_t stamp_ns) {
   bool requested = false;
   for (;;) {

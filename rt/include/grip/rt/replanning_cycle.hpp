@@ -74,6 +74,10 @@ class ReplanningCycle {
     blocked_noted_ = true;
   }
 
+  // The vehicle is not where the plans put it (it stopped on its contingency): the next cycle
+  // starts a fresh tree at q, the state the vehicle will hold at the next cycle's start.
+  void resynchronise(const State& q) noexcept { resync_ = q; }
+
   // Runs one cycle, growing the tree until now_ns() >= deadline_ns - safety margin.
   CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns) noexcept;
   // The same, with the state the plan should lead to chosen by `choose_target` instead of the
@@ -105,6 +109,7 @@ class ReplanningCycle {
   CellBox newly_blocked_;
   bool blocked_noted_ = false;
   BoundedVector<PlanStep> plan_;
+  std::optional<State> resync_;
 };
 
 extern template class ReplanningCycle<DdVelocity>;

@@ -50,6 +50,13 @@ struct PlannerParticipantConfig {
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
   std::chrono::nanoseconds startup_timeout{0};  // 0: wait for ever
   double duration_s = 0.0;                      // wall clock; 0: until request_stop()
+  // Without a goal the planner explores (GRIP.md section 3): its target is the frontier group
+  // chosen every cycle and its plan the trajectory of least visibility/length weight. A goal
+  // that arrives later takes over. A goal is waited for this long after the map is in sync.
+  bool explore_without_goal = true;
+  std::chrono::nanoseconds goal_grace{std::chrono::seconds(1)};
+  double sensing_radius_m = 0.0;  // d_max of the path weight; 0: a tenth of the map's width
+  bool no_safety = false;  // the paper's ablation: no contingency check (plans may end unsafe)
   bool lock_memory = true;
   // Called about every 250 ms from run()'s thread with a one-line summary (progress display).
   std::function<void(const std::string&)> on_progress;
@@ -74,6 +81,8 @@ struct PlannerParticipantReport {
   std::uint64_t map_sequence = 0;    // last update the planning thread applied
   std::uint64_t map_checksum = 0;    // of the planning thread's map at the end
   std::uint64_t vehicle_losses = 0;  // times the vehicle's liveliness was lost
+  bool explored = false;             // exploration ended: no reachable frontier remained
+  std::uint64_t resyncs = 0;         // fresh trees from where a stopped vehicle really stood
   bool allocations_counted = false;
   std::uint64_t heap_allocations_in_loop = 0;  // planning thread, after warm-up
   platform::ThreadUsage usage_in_loop{};

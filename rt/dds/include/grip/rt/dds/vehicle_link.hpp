@@ -42,7 +42,8 @@ class VehicleLink {
   // Sends the cells of `box` of map() as updates. `drop` (tests: a lossy link) decides for each
   // update whether it is withheld; a withheld update still consumes its sequence number.
   void publish_map_updates(const CellBox& box, std::uint64_t stamp_ns,
-                           FunctionRef<bool(const grip_msg_MapUpdate&)> drop = keep_all);
+                           FunctionRef<bool(const grip_msg_MapUpdate&)> drop);
+  void publish_map_updates(const CellBox& box, std::uint64_t stamp_ns);
   // Answers pending map requests with one snapshot (several requests, one snapshot).
   void answer_map_requests(std::uint64_t stamp_ns);
 
@@ -62,7 +63,6 @@ class VehicleLink {
   const platform::dds::Reader<grip_msg_Plan>& plan_reader() const noexcept { return plans_; }
 
  private:
-  static bool keep_all(const grip_msg_MapUpdate&) { return false; }
   VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
               platform::dds::Participant participant,
               platform::dds::Writer<grip_msg_VehicleState> states,

@@ -1,0 +1,92 @@
+#pragma once
+// The simulator as a DDS participant (`grip sim`, and the simulator half of `grip explore`): it
+// stands exactly where a vehicle controller would. It holds the ground truth, executes the plans
+// it receives with the vehicle model at a fixed rate against simulated time (PlanExecutor),
+// senses with the range sensor, and publishes the vehicle's state and the sensed map's updates
+// (answering map requests with snapshots). When the planner goes silent past its lease it drops
+// its plans and brakes. Collisions are counted and kept with time and place, never hidden.
+//
+// Real-time mode: simulated time runs time_scale times faster than the wall clock; ticks are
+// released on an absolute wall-clock timeline. It ends when the planner reports that no
+// reachable frontier remains (complete), at max_sim_time_s (timeout), when coverage has not
+// grown for stuck_after_s of simulated time (stuck), or when stopped.
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "grip/common/result.hpp"
+#include "grip/platform/dds/participant.hpp"
+#include "grip/vehicles/vehicle.hpp"
+#include "grip/world/occupancy_grid.hpp"
+#include "planner_status.h"
+
+namespace grip::sim {
+
+struct SimRunConfig {
+  platform::dds::DomainId domain = 0;
+  std::string dds_config;  // empty: the built-in loopback-only configuration
+  VehicleKind robot = VehicleKind::kCar;
+  std::string world;  // the scene name or map file, for the report
+  double start_x_m = 0.0;
+  double start_y_m = 0.0;
+  double start_theta_rad = 0.0;
+  double time_scale = 1.0;       // simulated seconds per wall-clock second
+  double cycle_s = 0.05;         // the planner's T, for the QoS deadlines
+  double sensor_radius_m = 0.0;  // 0: a tenth of the map's larger side
+  double max_sim_time_s = 600.0;
+  double stuck_after_s = 120.0;  // no coverage gained for this long: stuck
+  std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
+  std::chrono::nanoseconds planner_wait{std::chrono::seconds(30)};  // for the first plan
+};
+
+struct SimCollision {
+  double time_s;
+  double x_m;
+  double y_m;
+  double theta_rad;
+};
+
+struct SimProgress {
+  double sim_time_s = 0.0;
+  double coverage = 0.0;
+  double speed_m_s = 0.0;
+  std::uint64_t planner_cycle = 0;
+  std::uint64_t planner_misses = 0;
+  std::uint64_t collisions = 0;
+};
+
+struct SimRunReport {
+  std::string result;     // complete, timeout, stuck, error
+  std::string reason;     // for error (and a word on the others)
+  double coverage = 0.0;  // sensed fraction of the free space reachable from the start
+  std::uint64_t collisions = 0;
+  std::vector<SimCollision> collision_events;
+  std::uint64_t cycles = 0;           // the planner's, from its status
+  std::uint64_t deadline_misses = 0;  // the planner's, from its status
+  double sim_time_s = 0.0;
+  double distance_m = 0.0;
+  double mean_speed_fraction = 0.0;
+  std::uint64_t plans_received = 0;
+  std::uint64_t plans_rejected = 0;
+  std::uint64_t contingency_stops = 0;
+  std::uint64_t planner_losses = 0;
+  double wall_time_s = 0.0;
+  std::vector<std::array<double, 2>> trajectory;     // (x, y) per tick
+  std::vector<std::array<double, 2>> speed_profile;  // (t, |v|) per tick
+  double max_speed_m_s = 0.0;
+  std::optional<OccupancyGrid> known;  // what was sensed
+  std::optional<grip_msg_PlannerStatus> last_status;
+};
+
+// Runs until the end conditions above or `stop`. The truth must have the start free.
+Result<SimRunReport> run_simulation(const SimRunConfig& config, const OccupancyGrid& truth,
+                                    const std::atomic<bool>& stop,
+                                    const std::function<void(const SimProgress&)>& progress = {});
+
+}  // namespace grip::sim

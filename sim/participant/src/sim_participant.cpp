@@ -1,0 +1,240 @@
+#include "grip/sim/sim_participant.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <thread>
+
+#include "grip/platform/clock.hpp"
+#include "grip/rt/dds/vehicle_link.hpp"
+#include "grip/sim/plan_executor.hpp"
+#include "grip/sim/range_sensor.hpp"
+#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/world/distance_field.hpp"
+
+namespace grip::sim {
+
+namespace {
+
+// Simulated time on the wire starts here rather than at 0: a stamp of 0 reads as "never".
+constexpr std::int64_t kEpochNs = 1'000'000'000;
+
+// The free cells of the truth reachable from the start (8-connected, any width): what
+// coverage is a fraction of.
+Result<std::vector<std::uint32_t>> reachable_free_cells(const OccupancyGrid& truth, double x,
+                                                        double y) {
+  auto field = DistanceField::create(truth.width(), truth.height(), truth.resolution());
+  if (!field) return field.error();
+  int cx = 0;
+  int cy = 0;
+  if (!truth.to_cell(x, y, cx, cy)) return invalid_argument("the start is outside the map");
+  const std::uint32_t start[] = {truth.index(cx, cy)};
+  field->compute(truth, start);
+  std::vector<std::uint32_t> cells;
+  for (std::uint32_t c = 0; c < truth.cell_count(); ++c) {
+    if (field->reachable(c)) cells.push_back(c);
+  }
+  return cells;
+}
+
+double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>& reachable) {
+  std::size_t sensed = 0;
+  for (const std::uint32_t c : reachable) sensed += known.at(c) != Cell::kUnknown ? 1U : 0U;
+  return reachable.empty() ? 1.0
+                           : static_cast<double>(sensed) / static_cast<double>(reachable.size());
+}
+
+template <VehicleModel V>
+Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
+                              const OccupancyGrid& truth, const std::atomic<bool>& stop,
+                              const std::function<void(const SimProgress&)>& progress) {
+  using State = typename V::State;
+  if (!(config.time_scale > 0.0 && config.time_scale <= 1000.0)) {
+    return invalid_argument("time scale must be in (0, 1000] (got " +
+                            std::to_string(config.time_scale) + ")");
+  }
+  auto reachable = reachable_free_cells(truth, config.start_x_m, config.start_y_m);
+  if (!reachable) return reachable.error();
+  auto known = OccupancyGrid::create(truth.width(), truth.height(), truth.resolution(),
+                                     truth.origin_x(), truth.origin_y(), Cell::kUnknown);
+  if (!known) return known.error();
+
+  rt::dds::VehicleLinkConfig link_config;
+  link_config.domain = config.domain;
+  link_config.dds_config = config.dds_config;
+  link_config.kind = V::kKind;
+  link_config.timing.cycle = std::chrono::nanoseconds(std::llround(config.cycle_s * 1e9));
+  link_config.timing.time_scale = config.time_scale;
+  link_config.timing.liveliness_lease = config.liveliness_lease;
+  auto link = rt::dds::VehicleLink::create(link_config, std::move(known).value());
+  if (!link) return link.error();
+  OccupancyGrid& sensed = (*link)->map();
+
+  const double radius =
+      config.sensor_radius_m > 0.0 ? config.sensor_radius_m : RangeSensor::default_radius_m(truth);
+  auto sensor = RangeSensor::create(truth, radius);
+  if (!sensor) return sensor.error();
+  const State start =
+      vehicle.rest_state(config.start_x_m, config.start_y_m, config.start_theta_rad);
+  auto executor = PlanExecutor<V>::create(vehicle, truth, start, kEpochNs);
+  if (!executor) return executor.error();
+  const double dt = static_cast<double>(executor->step_ns()) * 1e-9;
+
+  SimRunReport report;
+  report.result = "error";
+  const auto t_sim = [&] { return static_cast<double>(executor->now_ns() - kEpochNs) * 1e-9; };
+  std::vector<PlanStep> steps;
+  steps.reserve(grip_msg_kMaxPlanSteps);
+  // Accepted plans by start time, to tell the planner which one is executing.
+  std::deque<std::pair<std::int64_t, std::uint64_t>> accepted;
+  const auto executing_cycle = [&]() -> std::uint64_t {
+    while (accepted.size() > 1 && accepted[1].first <= executor->now_ns()) accepted.pop_front();
+    const bool executing = executor->mode() == ExecutorMode::kExecuting && !accepted.empty() &&
+                           accepted.front().first <= executor->now_ns();
+    return executing ? accepted.front().second : 0;
+  };
+  std::uint64_t mismatches = 0;
+  std::uint64_t state_sequence = 0;
+  const auto publish_state = [&] {
+    grip_msg_VehicleState msg{};
+    msg.stamp_ns = static_cast<std::uint64_t>(executor->now_ns());
+    msg.sequence_number = ++state_sequence;
+    msg.kind = rt::dds::to_wire(V::kKind);
+    rt::dds::state_to_wire<V>(executor->state(), msg.state, msg.state_dim);
+    msg.time_scale = config.time_scale;
+    msg.plan_cycle = executing_cycle();
+    static_cast<void>((*link)->publish_state(msg));
+  };
+  const auto sense = [&] {
+    const State& q = executor->state();
+    const SenseResult seen = sensor->sense(state_x(q), state_y(q), sensed);
+    if (!seen.changed.empty()) {
+      (*link)->publish_map_updates(seen.changed, static_cast<std::uint64_t>(executor->now_ns()));
+    }
+  };
+  sense();
+  publish_state();
+
+  // A plan as the controller takes it: from its start time, from the state it predicts there.
+  const auto submit = [&](const grip_msg_Plan& plan) {
+    steps.clear();
+    for (std::uint32_t i = 0; i < plan.steps._length; ++i) {
+      const grip_msg_PlanStep& s = plan.steps._buffer[i];
+      steps.push_back(PlanStep{{s.control[0], s.control[1]}, s.duration_s});
+    }
+    State predicted;
+    for (int i = 0; i < V::kStateDim; ++i) predicted[i] = plan.start_state[i];
+    const PlanVerdict verdict =
+        executor->submit(steps, static_cast<std::int64_t>(plan.start_time_ns), predicted);
+    if (verdict != PlanVerdict::kAccepted) {
+      ++report.plans_rejected;
+      return;
+    }
+    ++report.plans_received;
+    accepted.push_back({static_cast<std::int64_t>(plan.start_time_ns), plan.cycle});
+  };
+  double best_coverage = coverage_of(sensed, *reachable);
+  double coverage_gained_at = 0.0;
+  bool planner_seen = false;
+  bool planner_alive = false;
+  std::optional<grip_msg_PlannerStatus> status;
+  std::int64_t wall0 = platform::now_ns();
+  const auto wall_of_tick = [&](std::uint64_t tick) {
+    return wall0 +
+           static_cast<std::int64_t>(static_cast<double>(tick) * dt * 1e9 / config.time_scale);
+  };
+  std::uint64_t tick = 0;
+  std::int64_t next_progress = wall0;
+  while (!stop.load(std::memory_order_acquire)) {
+    if (!planner_seen && platform::now_ns() - wall0 > config.planner_wait.count()) {
+      report.reason = "no plan from a planner within " +
+                      std::to_string(config.planner_wait.count() / 1'000'000'000) + " s";
+      break;
+    }
+    platform::sleep_until_ns(wall_of_tick(tick + 1));
+    ++tick;
+    executor->step();
+    if (executor->stats().start_mismatches > mismatches) {
+      // The plan starts from a state the vehicle is not in: following it would go elsewhere
+      // than the planner checked. Brake, and let the planner plan from where the vehicle stops.
+      mismatches = executor->stats().start_mismatches;
+      executor->abandon_plans();
+    }
+    sense();
+    publish_state();
+    (*link)->answer_map_requests(static_cast<std::uint64_t>(executor->now_ns()));
+    if (const grip_msg_Plan* plan = (*link)->take_plan()) {
+      submit(*plan);
+      planner_seen = true;
+    }
+    if (auto s = (*link)->take_status()) status = s;
+    const bool alive = (*link)->planner_alive();
+    if (planner_alive && !alive) {
+      executor->abandon_plans();  // the planner went silent past its lease
+      ++report.planner_losses;
+    }
+    planner_alive = alive;
+
+    const State& q = executor->state();
+    report.trajectory.push_back({state_x(q), state_y(q)});
+    report.speed_profile.push_back({t_sim(), executor->speed_m_s()});
+    if (tick % 20 == 0) {
+      const double coverage = coverage_of(sensed, *reachable);
+      if (coverage > best_coverage + 1e-9) {
+        best_coverage = coverage;
+        coverage_gained_at = t_sim();
+      }
+    }
+    if (progress && platform::now_ns() >= next_progress) {
+      next_progress += 250'000'000;
+      progress(SimProgress{t_sim(), best_coverage, executor->speed_m_s(),
+                           status ? status->cycle : 0, status ? status->misses : 0,
+                           executor->stats().collisions});
+    }
+    if (status && status->exploration_complete) {
+      report.result = "complete";
+      break;
+    }
+    if (t_sim() >= config.max_sim_time_s) {
+      report.result = "timeout";
+      break;
+    }
+    if (t_sim() - coverage_gained_at >= config.stuck_after_s) {
+      report.result = "stuck";
+      report.reason = "no coverage gained for " + std::to_string(config.stuck_after_s) + " s";
+      break;
+    }
+  }
+  if (stop.load() && report.result == "error") report.reason = "stopped";
+
+  const ExecutorStats& stats = executor->stats();
+  report.coverage = coverage_of(sensed, *reachable);
+  report.collisions = stats.collisions;
+  for (const CollisionEvent& e : executor->collision_events()) {
+    report.collision_events.push_back(
+        SimCollision{static_cast<double>(e.time_ns - kEpochNs) * 1e-9, e.x_m, e.y_m, e.theta_rad});
+  }
+  report.cycles = status ? status->cycle : 0;
+  report.deadline_misses = status ? status->misses : 0;
+  report.sim_time_s = t_sim();
+  report.distance_m = stats.distance_m;
+  report.mean_speed_fraction = executor->mean_speed_fraction();
+  report.contingency_stops = stats.contingencies;
+  report.wall_time_s = static_cast<double>(platform::now_ns() - wall0) * 1e-9;
+  report.max_speed_m_s = vehicle.max_speed_m_s();
+  report.known.emplace(sensed);
+  report.last_status = status;
+  return report;
+}
+
+}  // namespace
+
+Result<SimRunReport> run_simulation(const SimRunConfig& config, const OccupancyGrid& truth,
+                                    const std::atomic<bool>& stop,
+                                    const std::function<void(const SimProgress&)>& progress) {
+  return with_default_vehicle(config.robot, [&](const auto& vehicle) {
+    return run_with(vehicle, config, truth, stop, progress);
+  });
+}
+
+}  // namespace grip::sim

@@ -1,0 +1,311 @@
+// `grip explore` and `grip sim`: exploration of an unknown workspace (GRIP.md section 3) with the
+// simulator standing in for the vehicle.
+//   grip explore  the simulator and the planner as two DDS participants in one process;
+//   grip sim      the simulator alone, for a `grip planner` started elsewhere (host-in-the-loop).
+// Both take the world (a built-in scene or a map file), the robot, the time scale, the limits,
+// and write the same report and picture.
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "commands.hpp"
+#include "grip/platform/overrun_watcher.hpp"
+#include "grip/rt/dds/planner_participant.hpp"
+#include "grip/scenes/scenes.hpp"
+#include "grip/sim/map_file.hpp"
+#include "grip/sim/sim_participant.hpp"
+#include "grip/sim/start_pose.hpp"
+#include "grip/vehicles/default_vehicle.hpp"
+#include "render.hpp"
+
+namespace grip::tools {
+
+namespace {
+
+struct ExploreOptions {
+  std::string scene = "rooms";
+  std::string map;
+  std::string start;
+  std::string robot = "dd-vel";
+  std::uint64_t seed = 1;
+  double time_scale = 4.0;
+  double max_sim_time_s = 900.0;
+  bool no_safety = false;
+  bool lockstep = false;
+  unsigned domain = 0;
+  std::string report;
+  std::string image;
+};
+
+std::atomic<bool> g_stop{false};
+extern "C" void stop_exploration(int) { g_stop.store(true); }
+
+struct World {
+  std::string name;
+  OccupancyGrid truth;
+  sim::StartPose start;
+};
+
+Result<World> load_world(const ExploreOptions& o, VehicleKind robot) {
+  const Footprint footprint =
+      with_default_vehicle(robot, [](const auto& v) { return Footprint(v.footprint()); });
+  if (o.map.empty()) {
+    auto scene = make_scene(o.scene);
+    if (!scene) return scene.error();
+    World world{scene->name,
+                std::move(scene->grid),
+                {scene->start_x_m, scene->start_y_m, scene->start_theta_rad}};
+    if (!o.start.empty()) return invalid_argument("--start needs --map (scenes have their start)");
+    return world;
+  }
+  auto loaded = sim::load_map(o.map);
+  if (!loaded) return loaded.error();
+  sim::StartPose start;
+  if (o.start.empty()) {
+    auto chosen = sim::choose_start(*loaded, footprint);
+    if (!chosen) return chosen.error();
+    start = *chosen;
+  } else {
+    auto given = sim::parse_start(o.start);
+    if (!given) return given.error();
+    if (Status s = sim::check_start(*loaded, footprint, *given); !s) return s.error();
+    start = *given;
+  }
+  return World{o.map, std::move(loaded->grid), start};
+}
+
+nlohmann::json report_json(const ExploreOptions& o, const World& world,
+                           const sim::SimRunReport& r) {
+  nlohmann::json j;
+  j["result"] = r.result;
+  if (!r.reason.empty()) j["reason"] = r.reason;
+  j["coverage"] = r.coverage;
+  j["collisions"] = r.collisions;
+  nlohmann::json events = nlohmann::json::array();
+  for (const auto& c : r.collision_events) {
+    events.push_back(
+        {{"time_s", c.time_s}, {"x_m", c.x_m}, {"y_m", c.y_m}, {"theta_rad", c.theta_rad}});
+  }
+  j["collision_events"] = events;
+  j["cycles"] = r.cycles;
+  j["deadline_misses"] = r.deadline_misses;
+  j["sim_time_s"] = r.sim_time_s;
+  j["wall_time_s"] = r.wall_time_s;
+  j["distance_m"] = r.distance_m;
+  j["mean_speed_fraction"] = r.mean_speed_fraction;
+  j["plans_received"] = r.plans_received;
+  j["plans_rejected"] = r.plans_rejected;
+  j["contingency_stops"] = r.contingency_stops;
+  j["planner_losses"] = r.planner_losses;
+  j["world"] = world.name;
+  j["robot"] = o.robot;
+  j["seed"] = o.seed;
+  j["time_scale"] = o.time_scale;
+  j["safety"] = !o.no_safety;
+  j["start"] = {world.start.x_m, world.start.y_m, world.start.theta_rad};
+  j["max_speed_m_s"] = r.max_speed_m_s;
+  // The velocity profile of the paper's Fig. 9, one sample per simulation tick.
+  nlohmann::json profile = nlohmann::json::array();
+  for (const auto& p : r.speed_profile) profile.push_back({p[0], p[1]});
+  j["speed_profile"] = profile;
+  return j;
+}
+
+// Fig. 1 / Fig. 8 of the paper: sensed free, obstacles, unknown, the trajectory, collisions.
+Status draw_run(const World& world, const sim::SimRunReport& r, const std::string& path) {
+  auto canvas = MapCanvas::create(world.truth, 2);
+  if (!canvas) return canvas.error();
+  canvas->draw_grid(*r.known);
+  std::vector<Point> line;
+  line.reserve(r.trajectory.size());
+  for (const auto& p : r.trajectory) line.push_back({p[0], p[1]});
+  canvas->draw_polyline(line, 0.85, 0.15, 0.1, 2.0);
+  for (const auto& c : r.collision_events) canvas->draw_marker({c.x_m, c.y_m}, 6.0, 1.0, 0.0, 1.0);
+  canvas->draw_marker({world.start.x_m, world.start.y_m}, 5.0, 0.95, 0.6, 0.0);
+  std::ostringstream title;
+  title << world.name << ", " << r.result << ", coverage " << std::fixed << std::setprecision(3)
+        << r.coverage << ", collisions " << r.collisions << ", " << std::setprecision(0)
+        << r.sim_time_s << " s";
+  canvas->draw_label(title.str(), 8.0, 20.0, 14.0);
+  return canvas->write_png(path);
+}
+
+int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRunReport>& run,
+           const char* command) {
+  if (!run) {
+    std::cerr << command << ": " << run.error().message << "\n";
+    return 1;
+  }
+  const sim::SimRunReport& r = *run;
+  std::cout << command << ": " << r.result << (r.reason.empty() ? "" : " (" + r.reason + ")")
+            << " after " << std::fixed << std::setprecision(1) << r.sim_time_s << " s simulated ("
+            << r.wall_time_s << " s wall)\n  coverage " << std::setprecision(3) << r.coverage
+            << ", collisions " << r.collisions << ", distance " << std::setprecision(1)
+            << r.distance_m << " m, mean speed " << std::setprecision(2) << r.mean_speed_fraction
+            << " of top\n  planner cycles " << r.cycles << ", deadline misses " << r.deadline_misses
+            << ", plans " << r.plans_received << " (rejected " << r.plans_rejected
+            << "), contingency stops " << r.contingency_stops << "\n";
+  if (!o.report.empty()) {
+    std::ofstream out(o.report);
+    out << report_json(o, world, r).dump(1) << "\n";
+    if (!out) {
+      std::cerr << command << ": cannot write " << o.report << "\n";
+      return 1;
+    }
+  }
+  if (!o.image.empty()) {
+    if (Status s = draw_run(world, r, o.image); !s) {
+      std::cerr << command << ": " << s.error().message << "\n";
+      return 1;
+    }
+  }
+  return r.result == "complete" ? 0 : 3;
+}
+
+sim::SimRunConfig sim_config(const ExploreOptions& o, VehicleKind robot, const World& world) {
+  sim::SimRunConfig c;
+  c.domain = o.domain;
+  c.robot = robot;
+  c.world = world.name;
+  c.start_x_m = world.start.x_m;
+  c.start_y_m = world.start.y_m;
+  c.start_theta_rad = world.start.theta_rad;
+  c.time_scale = o.time_scale;
+  c.max_sim_time_s = o.max_sim_time_s;
+  return c;
+}
+
+std::function<void(const sim::SimProgress&)> progress_line() {
+  if (isatty(STDERR_FILENO) != 1) return {};
+  return [](const sim::SimProgress& p) {
+    std::cerr << "\r[" << std::fixed << std::setprecision(1) << p.sim_time_s << " s] coverage "
+              << std::setprecision(3) << p.coverage << ", speed " << std::setprecision(2)
+              << p.speed_m_s << " m/s, cycle " << p.planner_cycle << ", misses " << p.planner_misses
+              << ", collisions " << p.collisions << "    " << std::flush;
+  };
+}
+
+Status validate(const ExploreOptions& o) {
+  if (o.lockstep) {
+    return invalid_argument("--lockstep is not available yet: run in real time with --time-scale");
+  }
+  if (!(o.time_scale > 0.0 && o.time_scale <= 50.0)) {
+    return invalid_argument("--time-scale must be in (0, 50] (got " + std::to_string(o.time_scale) +
+                            ")");
+  }
+  if (!(o.max_sim_time_s > 0.0)) return invalid_argument("--max-sim-time must be > 0");
+  if (o.domain >= DDS_DOMAIN_DEFAULT) return invalid_argument("--domain out of range");
+  return Ok{};
+}
+
+int run_explore(const ExploreOptions& o, bool with_planner) {
+  const char* command = with_planner ? "grip explore" : "grip sim";
+  auto robot = vehicle_kind_from_name(o.robot);
+  if (!robot) {
+    std::cerr << command << ": " << robot.error().message << "\n";
+    return 2;
+  }
+  if (Status s = validate(o); !s) {
+    std::cerr << command << ": " << s.error().message << "\n";
+    return 2;
+  }
+  auto world = load_world(o, *robot);
+  if (!world) {
+    std::cerr << command << ": " << world.error().message << "\n";
+    return 2;
+  }
+  // Before any thread (Cyclone's included): SIGXCPU must be blocked everywhere.
+  std::optional<platform::OverrunWatcher> overruns;
+  if (with_planner) {
+    auto watcher = platform::OverrunWatcher::start();
+    if (!watcher) {
+      std::cerr << command << ": " << watcher.error().message << "\n";
+      return 2;
+    }
+    overruns.emplace(std::move(watcher).value());
+  }
+  std::signal(SIGINT, stop_exploration);
+  std::signal(SIGTERM, stop_exploration);
+
+  std::unique_ptr<rt::dds::PlannerParticipant> planner;
+  std::thread planner_thread;
+  std::optional<Result<rt::dds::PlannerParticipantReport>> planner_result;
+  if (with_planner) {
+    rt::dds::PlannerParticipantConfig pc;
+    pc.domain = o.domain;
+    pc.robot = *robot;
+    pc.seed = o.seed;
+    pc.no_safety = o.no_safety;
+    pc.startup_timeout = std::chrono::seconds(30);
+    auto created = rt::dds::PlannerParticipant::create(pc);
+    if (!created) {
+      std::cerr << command << ": " << created.error().message << "\n";
+      return 2;
+    }
+    planner = std::move(created).value();
+    planner_thread = std::thread([&] { planner_result = planner->run(); });
+  }
+  const auto run =
+      sim::run_simulation(sim_config(o, *robot, *world), world->truth, g_stop, progress_line());
+  if (isatty(STDERR_FILENO) == 1) std::cerr << "\n";
+  if (planner) {
+    planner->request_stop();
+    planner_thread.join();
+    if (planner_result && !planner_result->ok()) {
+      std::cerr << command << ": planner: " << planner_result->error().message << "\n";
+    }
+  }
+  return finish(o, *world, run, command);
+}
+
+void add_common_options(CLI::App* cmd, ExploreOptions& o) {
+  cmd->add_option("--scene", o.scene, "meandros, labyrinth or rooms")->capture_default_str();
+  cmd->add_option("--map", o.map,
+                  "A MovingAI .map or ROS map_server .yaml file instead of a scene");
+  cmd->add_option("--start", o.start, "X,Y[,THETA] with --map (default: chosen)");
+  cmd->add_option("--robot", o.robot, "dd-vel, dd-accel or car")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Planner seed")->capture_default_str();
+  cmd->add_option("--time-scale", o.time_scale, "Simulated seconds per wall-clock second")
+      ->capture_default_str();
+  cmd->add_option("--max-sim-time", o.max_sim_time_s, "Give up after this much simulated time [s]")
+      ->capture_default_str();
+  cmd->add_flag("--lockstep", o.lockstep, "Deterministic: wait for each plan (not available yet)");
+  cmd->add_option("--domain", o.domain, "DDS domain id")->capture_default_str();
+  cmd->add_option("--report", o.report, "Write the JSON report here");
+  cmd->add_option("--image", o.image, "Draw the run into this PNG");
+}
+
+}  // namespace
+
+void register_explore_commands(CLI::App& app) {
+  auto explore = std::make_shared<ExploreOptions>();
+  CLI::App* e = app.add_subcommand(
+      "explore", "Explore an unknown workspace: simulator and planner as two DDS participants");
+  add_common_options(e, *explore);
+  e->add_flag("--no-safety", explore->no_safety,
+              "The paper's ablation: plans are not checked for a safe braking maneuver");
+  e->callback([explore]() {
+    if (const int rc = run_explore(*explore, true); rc != 0) throw CLI::RuntimeError(rc);
+  });
+
+  auto sim_options = std::make_shared<ExploreOptions>();
+  CLI::App* s = app.add_subcommand(
+      "sim", "The simulator alone, standing in for the vehicle of a `grip planner` elsewhere");
+  add_common_options(s, *sim_options);
+  s->callback([sim_options]() {
+    if (const int rc = run_explore(*sim_options, false); rc != 0) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace grip::tools
