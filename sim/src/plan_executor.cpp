@@ -186,6 +186,7 @@ void PlanExecutor<V>::start_queued_plan() noexcept {
             queue_.begin());
   --queue_size_;
   const PlanSlot& slot = slots_[slot_index];
+  bool mismatch = false;
   if (slot.predicted_start) {
     const State& p = *slot.predicted_start;
     const double position_error =
@@ -197,6 +198,7 @@ void PlanExecutor<V>::start_queued_plan() noexcept {
     if (position_error > kStartTolerance || heading_error > kStartTolerance ||
         (state_ - p).template lpNorm<Eigen::Infinity>() > kStartTolerance) {
       ++stats_.start_mismatches;
+      mismatch = true;
     }
   }
   current_ = slot_index;
@@ -204,6 +206,12 @@ void PlanExecutor<V>::start_queued_plan() noexcept {
   mode_ = ExecutorMode::kExecuting;
   speed_started_ = true;
   ++stats_.plans_started;
+  if (mismatch && config_.brake_on_start_mismatch) {
+    // Its controls would drive the vehicle where nobody checked: brake instead.
+    stats_.plans_superseded += queue_size_;
+    queue_size_ = 0;
+    begin_contingency(true);
+  }
 }
 
 template <VehicleModel V>

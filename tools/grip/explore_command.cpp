@@ -107,6 +107,9 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
   j["plans_received"] = r.plans_received;
   j["plans_rejected"] = r.plans_rejected;
   j["contingency_stops"] = r.contingency_stops;
+  j["brake_plans"] = r.brake_plans;
+  j["start_mismatches"] = r.start_mismatches;
+  j["max_start_error_m"] = r.max_start_error_m;
   j["planner_losses"] = r.planner_losses;
   j["world"] = world.name;
   j["robot"] = o.robot;
@@ -154,8 +157,10 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
             << ", collisions " << r.collisions << ", distance " << std::setprecision(1)
             << r.distance_m << " m, mean speed " << std::setprecision(2) << r.mean_speed_fraction
             << " of top\n  planner cycles " << r.cycles << ", deadline misses " << r.deadline_misses
-            << ", plans " << r.plans_received << " (rejected " << r.plans_rejected
-            << "), contingency stops " << r.contingency_stops << "\n";
+            << ", plans " << r.plans_received << " (rejected " << r.plans_rejected << ", "
+            << r.brake_plans << " to brake, " << r.start_mismatches
+            << " not starting where the vehicle was), contingency stops " << r.contingency_stops
+            << "\n";
   if (!o.report.empty()) {
     std::ofstream out(o.report);
     out << report_json(o, world, r).dump(1) << "\n";

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include "grip/common/enum_names.hpp"
 
@@ -9,7 +10,7 @@ namespace grip::rt::dds {
 
 namespace {
 
-constexpr std::array<NamedValue<Rejection>, 18> kRejectionNames{{
+constexpr std::array<NamedValue<Rejection>, 17> kRejectionNames{{
     {Rejection::kNone, "none"},
     {Rejection::kUnknownVehicleKind, "unknown vehicle kind"},
     {Rejection::kWrongVehicleKind, "wrong vehicle kind"},
@@ -27,7 +28,6 @@ constexpr std::array<NamedValue<Rejection>, 18> kRejectionNames{{
     {Rejection::kBadSnapshot, "bad snapshot numbering"},
     {Rejection::kGoalOutsideMap, "goal outside the map"},
     {Rejection::kNonPositiveDuration, "duration not positive"},
-    {Rejection::kEmptyPlan, "empty plan"},
 }};
 
 constexpr Verdict reject(Rejection reason, const char* field) noexcept { return {reason, field}; }
@@ -54,8 +54,12 @@ Verdict check_freshness(std::int64_t source_ns, std::int64_t reception_ns,
   return {};
 }
 
-bool from_wire(grip_msg_VehicleKind wire, VehicleKind& out) noexcept {
-  switch (wire) {
+bool from_wire(const grip_msg_VehicleKind& wire, VehicleKind& out) noexcept {
+  // Read as the integer on the wire: a value outside the enum must not be loaded as the enum.
+  std::int32_t raw = 0;
+  static_assert(sizeof raw == sizeof wire);
+  std::memcpy(&raw, &wire, sizeof raw);
+  switch (raw) {
     case grip_msg_DD_VELOCITY:
       out = VehicleKind::kDdVelocity;
       return true;
@@ -65,8 +69,9 @@ bool from_wire(grip_msg_VehicleKind wire, VehicleKind& out) noexcept {
     case grip_msg_CAR:
       out = VehicleKind::kCar;
       return true;
+    default:
+      return false;
   }
-  return false;
 }
 
 grip_msg_VehicleKind to_wire(VehicleKind kind) noexcept {
@@ -186,8 +191,8 @@ Verdict check_plan(const grip_msg_Plan& msg, VehicleKind kind) noexcept {
   if (msg.state_dim != dim) return reject(Rejection::kWrongStateDim, "state_dim");
   if (!all_finite(msg.start_state, msg.state_dim))
     return reject(Rejection::kNotFinite, "start_state");
-  if (msg.steps._length == 0) return reject(Rejection::kEmptyPlan, "steps");
-  if (msg.steps._length > grip_msg_kMaxPlanSteps || msg.steps._buffer == nullptr) {
+  if (msg.steps._length > grip_msg_kMaxPlanSteps ||
+      (msg.steps._length > 0 && msg.steps._buffer == nullptr)) {
     return reject(Rejection::kWrongLength, "steps");
   }
   if (msg.contingency != contingency_of(kind))

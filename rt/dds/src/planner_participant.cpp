@@ -258,8 +258,8 @@ class PlannerParticipantFor final : public PlannerParticipant {
   double time_scale_ = 1.0;
   std::atomic<std::int64_t> period_wall_ns_{0};  // set at start-up, read by the publish thread
   std::uint64_t state_sequence_ = 0;
-  std::uint64_t last_plan_start_ns_ = 0;  // vehicle time of the last plan handed out
-  std::uint64_t plan_start_ns_ = 0;       // vehicle time at which this cycle's plan starts
+  std::uint64_t chain_start_ns_ = 0;  // vehicle time at which the first plan from this tree starts
+  std::uint64_t plan_start_ns_ = 0;   // vehicle time at which this cycle's plan starts
   std::uint64_t last_state_stamp_ns_ = 0;
   std::uint64_t resyncs_ = 0;
   std::uint64_t cycles_ = 0;
@@ -595,24 +595,29 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
   const std::int64_t end = platform::now_ns();
   misses_ += end > deadline_ns ? 1 : 0;
 
-  if (out.plan_available) {
-    // Planned during (t[i-1], t[i]) for execution from t[i], the next release.
+  {
+    // Planned during (t[i-1], t[i]) for execution from t[i], the next release. Without a plan
+    // the vehicle is told to brake from t[i], as the tree predicts: it must not go on with the
+    // rest of its last plan, which the tree no longer follows.
     PlanSlot& slot = plans_->write_buffer();
     slot.cycle = cycles_;
     slot.start_time_ns = plan_start_ns_;
     state_to_wire<V>(cycle_->plan_start(), slot.start_state.data(), slot.state_dim);
     slot.state_sequence = state_sequence_;
     const auto& plan = cycle_->plan();
-    slot.steps = static_cast<std::uint32_t>(std::min<std::size_t>(plan.size(), slot.step.size()));
+    slot.steps =
+        out.plan_available
+            ? static_cast<std::uint32_t>(std::min<std::size_t>(plan.size(), slot.step.size()))
+            : 0U;
     for (std::uint32_t i = 0; i < slot.steps; ++i) {
       slot.step[i].control[0] = plan[i].control[0];
       slot.step[i].control[1] = plan[i].control[1];
       slot.step[i].duration_s = plan[i].duration_s;
     }
     slot.committed_monotonic_ns = static_cast<std::uint64_t>(platform::now_ns());
-    last_plan_start_ns_ = slot.start_time_ns;
+    if (chain_start_ns_ == 0) chain_start_ns_ = slot.start_time_ns;
     plans_->publish();
-    ++plans_committed_;
+    plans_committed_ += out.plan_available ? 1 : 0;
   }
   CycleStatus& status = statuses_->write_buffer();
   status.cycle = cycles_;
@@ -641,8 +646,8 @@ void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured
   // braked (a plan arrived late or did not start where it was), so it is not where the tree
   // puts it. Plan again from where it stands; it stays there until the next plan starts.
   const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
-  if (measured.plan_cycle != 0 || last_plan_start_ns_ == 0 ||
-      measured.stamp_ns < last_plan_start_ns_ + cycle_ns) {
+  if (measured.plan_cycle != 0 || chain_start_ns_ == 0 ||
+      measured.stamp_ns < chain_start_ns_ + cycle_ns) {
     return;
   }
   const State q = state_of(measured);
@@ -651,6 +656,7 @@ void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured
   const double off_rad = std::abs(wrap_angle(state_theta(q) - state_theta(root)));
   if (vehicle_.is_stopped(q) && (off_m > 0.02 || off_rad > 0.02)) {
     cycle_->resynchronise(q);
+    chain_start_ns_ = 0;  // the next plan starts a new chain
     ++resyncs_;
   }
 }

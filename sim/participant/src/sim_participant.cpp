@@ -76,7 +76,9 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   if (!sensor) return sensor.error();
   const State start =
       vehicle.rest_state(config.start_x_m, config.start_y_m, config.start_theta_rad);
-  auto executor = PlanExecutor<V>::create(vehicle, truth, start, kEpochNs);
+  ExecutorConfig executor_config;
+  executor_config.brake_on_start_mismatch = true;
+  auto executor = PlanExecutor<V>::create(vehicle, truth, start, kEpochNs, executor_config);
   if (!executor) return executor.error();
   const double dt = static_cast<double>(executor->step_ns()) * 1e-9;
 
@@ -93,7 +95,6 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
                            accepted.front().first <= executor->now_ns();
     return executing ? accepted.front().second : 0;
   };
-  std::uint64_t mismatches = 0;
   std::uint64_t state_sequence = 0;
   const auto publish_state = [&] {
     grip_msg_VehicleState msg{};
@@ -116,7 +117,14 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   publish_state();
 
   // A plan as the controller takes it: from its start time, from the state it predicts there.
+  std::int64_t brake_at = -1;  // a plan without steps: brake from its start time; -1: none
   const auto submit = [&](const grip_msg_Plan& plan) {
+    if (plan.steps._length == 0) {
+      brake_at = static_cast<std::int64_t>(plan.start_time_ns);
+      ++report.plans_received;
+      ++report.brake_plans;
+      return;
+    }
     steps.clear();
     for (std::uint32_t i = 0; i < plan.steps._length; ++i) {
       const grip_msg_PlanStep& s = plan.steps._buffer[i];
@@ -153,13 +161,11 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     }
     platform::sleep_until_ns(wall_of_tick(tick + 1));
     ++tick;
-    executor->step();
-    if (executor->stats().start_mismatches > mismatches) {
-      // The plan starts from a state the vehicle is not in: following it would go elsewhere
-      // than the planner checked. Brake, and let the planner plan from where the vehicle stops.
-      mismatches = executor->stats().start_mismatches;
+    if (brake_at >= 0 && executor->now_ns() >= brake_at) {
       executor->abandon_plans();
+      brake_at = -1;
     }
+    executor->step();
     sense();
     publish_state();
     (*link)->answer_map_requests(static_cast<std::uint64_t>(executor->now_ns()));
@@ -220,6 +226,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   report.distance_m = stats.distance_m;
   report.mean_speed_fraction = executor->mean_speed_fraction();
   report.contingency_stops = stats.contingencies;
+  report.start_mismatches = stats.start_mismatches;
+  report.max_start_error_m = stats.max_start_position_error_m;
   report.wall_time_s = static_cast<double>(platform::now_ns() - wall0) * 1e-9;
   report.max_speed_m_s = vehicle.max_speed_m_s();
   report.known.emplace(sensed);

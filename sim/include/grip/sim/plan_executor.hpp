@@ -47,6 +47,9 @@ struct ExecutorConfig {
   std::uint32_t max_queued_plans = 4;         // plans waiting for their start time
   std::uint32_t max_collision_events = 1024;  // recorded in detail; all are counted
   std::uint32_t max_speed_samples = 72'000;   // one per tick: an hour at 20 Hz
+  // A plan whose predicted start differs from the vehicle's state is not executed: the vehicle
+  // brakes (its contingency) instead of following controls from a state nobody checked.
+  bool brake_on_start_mismatch = false;
 
   Status validate() const;
 };

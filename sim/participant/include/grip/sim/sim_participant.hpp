@@ -75,6 +75,9 @@ struct SimRunReport {
   std::uint64_t plans_received = 0;
   std::uint64_t plans_rejected = 0;
   std::uint64_t contingency_stops = 0;
+  std::uint64_t brake_plans = 0;       // plans without steps: the planner had nothing safe
+  std::uint64_t start_mismatches = 0;  // plans refused at their start: not where the vehicle was
+  double max_start_error_m = 0.0;      // the largest of those position differences
   std::uint64_t planner_losses = 0;
   double wall_time_s = 0.0;
   std::vector<std::array<double, 2>> trajectory;     // (x, y) per tick

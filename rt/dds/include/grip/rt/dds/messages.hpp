@@ -34,7 +34,6 @@ enum class Rejection : std::uint8_t {
   kBadSnapshot,  // snapshot part numbering inconsistent
   kGoalOutsideMap,
   kNonPositiveDuration,
-  kEmptyPlan,
 };
 std::string_view rejection_name(Rejection r) noexcept;
 
@@ -54,7 +53,7 @@ Verdict check_freshness(std::int64_t source_ns, std::int64_t reception_ns,
                         const FreshnessLimits& limits) noexcept;
 
 // Wire <-> core vehicle kinds; false for a value outside the enum.
-bool from_wire(grip_msg_VehicleKind wire, VehicleKind& out) noexcept;
+bool from_wire(const grip_msg_VehicleKind& wire, VehicleKind& out) noexcept;
 grip_msg_VehicleKind to_wire(VehicleKind kind) noexcept;
 
 // A vehicle state for `vehicle`: kind and dimension match, numbers finite, time scale in
@@ -90,8 +89,9 @@ inline GoalRegion goal_from_wire(const grip_msg_Goal& msg) noexcept {
   return GoalRegion{msg.x_m, msg.y_m, msg.radius_m};
 }
 
-// A plan, for the vehicle controller: the kind it drives, at least one step, finite controls,
-// durations > 0 and finite, a start state of the right dimension and finite.
+// A plan, for the vehicle controller: the kind it drives, finite controls, durations > 0 and
+// finite, a start state of the right dimension and finite. A plan without steps is valid: it
+// says "brake from the start time" (the planner has nothing safe to add).
 Verdict check_plan(const grip_msg_Plan& msg, VehicleKind kind) noexcept;
 
 // The braking maneuver each vehicle's plans end in (its contingency, GRIP.md section 2.3).

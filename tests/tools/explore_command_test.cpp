@@ -1,0 +1,135 @@
+// `grip explore` and `grip sim` run for real on a small map: the report has every field the
+// issue names, the vehicle moves on the planner's plans without a collision, and the picture is
+// written; the simulator and the planner also work as two processes over loopback (the
+// host-in-the-loop setup); bad maps and options are refused naming what is wrong.
+// Nothing about time is asserted.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+const std::string kGrip = GRIP_BINARY_DIR "/bin/grip";
+
+struct CommandRun {
+  int status;
+  std::string output;
+};
+
+CommandRun run(const std::string& arguments) {
+  const std::string command = kGrip + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return {-1, "popen failed"};
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+// An 8 m x 8 m room (1 m MovingAI cells) with a pillar and a wall to explore around.
+std::string write_small_map() {
+  const std::string path = ::testing::TempDir() + "grip-explore-small.map";
+  std::ofstream out(path);
+  out << "type octile\nheight 10\nwidth 10\nmap\n"
+      << "@@@@@@@@@@\n@........@\n@........@\n@...@@...@\n@...@@...@\n"
+      << "@........@\n@.@@@@@..@\n@........@\n@........@\n@@@@@@@@@@\n";
+  return path;
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
+  for (const char* key :
+       {"result", "coverage", "collisions", "cycles", "deadline_misses", "sim_time_s", "distance_m",
+        "mean_speed_fraction", "plans_received", "contingency_stops", "speed_profile"}) {
+    ASSERT_TRUE(r.contains(key)) << key << "\n" << output;
+  }
+  const std::string result = r.at("result");
+  EXPECT_TRUE(result == "complete" || result == "timeout") << result << "\n" << output;
+  EXPECT_EQ(r.at("collisions").get<int>(), 0) << r.at("collision_events").dump();
+  EXPECT_GT(r.at("plans_received").get<int>(), 20) << output;
+  EXPECT_GT(r.at("distance_m").get<double>(), 1.0) << "the vehicle never followed a plan";
+  EXPECT_GT(r.at("coverage").get<double>(), 0.2);
+  EXPECT_LE(r.at("coverage").get<double>(), 1.0);
+  EXPECT_GT(r.at("speed_profile").size(), 100U);
+}
+
+TEST(ExploreCommand, ExploresASmallMapWithoutCollisionAndWritesReportAndPicture) {
+  const std::string map = write_small_map();
+  const std::string report = ::testing::TempDir() + "grip-explore-report.json";
+  const std::string image = ::testing::TempDir() + "grip-explore.png";
+  const CommandRun r =
+      run("explore --map " + map +
+          " --robot dd-vel --time-scale 4 --max-sim-time 20 --domain 81 --report " + report +
+          " --image " + image);
+  ASSERT_TRUE(r.status == 0 || r.status == 3) << r.output;  // complete, or timed out
+  expect_a_sane_run(read_json(report), r.output);
+  std::ifstream png(image, std::ios::binary);
+  char signature[8] = {};
+  png.read(signature, 8);
+  EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+}
+
+TEST(ExploreCommand, SimulatorAndPlannerWorkAsTwoProcesses) {
+  const std::string map = write_small_map();
+  const std::string report = ::testing::TempDir() + "grip-sim-report.json";
+  std::vector<std::string> args{kGrip,      "planner", "--robot",           "dd-vel",
+                                "--domain", "82",      "--startup-timeout", "60"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t planner = 0;
+  ASSERT_EQ(posix_spawn(&planner, kGrip.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  const CommandRun r =
+      run("sim --map " + map +
+          " --robot dd-vel --time-scale 4 --max-sim-time 20 --domain 82 --report " + report);
+  kill(planner, SIGTERM);  // a planner stops on SIGTERM, like Ctrl-C
+  int status = 0;
+  waitpid(planner, &status, 0);
+  ASSERT_TRUE(r.status == 0 || r.status == 3) << r.output;
+  expect_a_sane_run(read_json(report), r.output);
+  EXPECT_TRUE(WIFEXITED(status)) << "the planner did not stop cleanly on SIGTERM";
+}
+
+TEST(ExploreCommand, BadMapsAndOptionsAreRefusedNamingWhatIsWrong) {
+  const std::string bad_map = ::testing::TempDir() + "grip-explore-bad.map";
+  {
+    std::ofstream out(bad_map);
+    out << "type octile\nheight 3\nwidth 4\nmap\n@@@@\n@..\n@@@@\n";
+  }
+  CommandRun r = run("explore --map " + bad_map);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find(bad_map + ":6"), std::string::npos) << r.output;  // file and line
+
+  r = run("explore --map /nonexistent/grip.map");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("/nonexistent/grip.map"), std::string::npos) << r.output;
+
+  r = run("explore --map " + write_small_map() + " --start 4.5,5.5");  // inside the pillar
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("4.5"), std::string::npos) << r.output;
+
+  r = run("explore --lockstep");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--lockstep"), std::string::npos) << r.output;
+
+  r = run("explore --time-scale 0");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--time-scale"), std::string::npos) << r.output;
+}
+
+}  // namespace
