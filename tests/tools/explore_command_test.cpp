@@ -15,27 +15,16 @@
 #include <string>
 #include <vector>
 
+#include "grip_command.hpp"
+
 extern char** environ;
 
 namespace {
 
-const std::string kGrip = GRIP_BINARY_DIR "/bin/grip";
+using grip::testing::CommandRun;
+using grip::testing::kGrip;
 
-struct CommandRun {
-  int status;
-  std::string output;
-};
-
-CommandRun run(const std::string& arguments) {
-  const std::string command = kGrip + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return {-1, "popen failed"};
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+CommandRun run(const std::string& arguments) { return grip::testing::run_grip(arguments); }
 
 // An 8 m x 8 m room (1 m MovingAI cells) with a pillar and a wall to explore around.
 std::string write_small_map() {

@@ -10,25 +10,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "grip_command.hpp"
+
 namespace {
 
-const std::string kGrip = GRIP_BINARY_DIR "/bin/grip";
+using grip::testing::CommandRun;
+using grip::testing::kGrip;
 
-struct CommandRun {
-  int status;
-  std::string output;
-};
-
-CommandRun run(const std::string& arguments) {
-  const std::string command = kGrip + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return {-1, "popen failed"};
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+CommandRun run(const std::string& arguments) { return grip::testing::run_grip(arguments); }
 
 bool sanitized() {
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)

@@ -1,0 +1,29 @@
+#pragma once
+// Runs the `grip` command as users run it, capturing its exit status and output.
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+namespace grip::testing {
+
+inline const std::string kGrip = GRIP_BINARY_DIR "/bin/grip";
+
+struct CommandRun {
+  int status;          // the exit status, -1 when it did not exit normally
+  std::string output;  // stdout and stderr
+};
+
+inline CommandRun run_grip(const std::string& arguments) {
+  const std::string command = kGrip + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return {-1, "popen failed"};
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+}  // namespace grip::testing
