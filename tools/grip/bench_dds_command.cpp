@@ -122,10 +122,21 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
   char self[4096] = {};
   const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
   if (n <= 0) return Error{ErrorCode::kIo, "cannot find the grip executable (/proc/self/exe)"};
-  auto planner = Child::spawn({std::string(self, static_cast<std::size_t>(n)), "planner", "--robot",
-                               "dd-vel", "--domain", std::to_string(o.domain), "--duration",
-                               std::to_string(o.duration_s), "--startup-timeout", "30"},
-                              {}, "/dev/null");
+  std::vector<std::string> args{std::string(self, static_cast<std::size_t>(n)),
+                                "planner",
+                                "--robot",
+                                "dd-vel",
+                                "--domain",
+                                std::to_string(o.domain),
+                                "--duration",
+                                std::to_string(o.duration_s),
+                                "--startup-timeout",
+                                "30"};
+  if (!o.planner_report.empty()) {
+    args.push_back("--report");
+    args.push_back(o.planner_report);
+  }
+  auto planner = Child::spawn(std::move(args), {}, "/dev/null");
   if (!planner) return planner.error();
 
   grip_msg_Goal goal{};
@@ -140,6 +151,7 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
       std::chrono::steady_clock::now() + std::chrono::duration<double>(o.duration_s + 35.0);
   std::int64_t next_state = platform::now_ns();
   bool seen_plans = false;
+  std::uint64_t last_cycle = 0;
   while (std::chrono::steady_clock::now() < until) {
     const std::int64_t now = platform::now_ns();
     if (now >= next_state) {
@@ -152,6 +164,10 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
       state.state[2] = scene.start_theta_rad;
       state.state_dim = 3;
       state.time_scale = 1.0;
+      // It claims to follow the plans, so that the planner replans as it would for a vehicle
+      // that does (rather than re-planning from a stopped one every cycle): the figure is the
+      // delivery, not the driving.
+      state.plan_cycle = last_cycle;
       static_cast<void>((*link)->publish_state(state));
       (*link)->answer_map_requests(static_cast<std::uint64_t>(now));
       next_state = now + 50'000'000;
@@ -162,6 +178,7 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
       bytes += static_cast<double>(sizeof(grip_msg_Plan) - sizeof(plan->steps) + 4 +
                                    plan->steps._length * sizeof(grip_msg_PlanStep));
       ++out.plans;
+      last_cycle = plan->cycle;
       seen_plans = true;
     } else if (seen_plans && !(*link)->planner_alive()) {
       break;  // the planner finished its duration
@@ -170,7 +187,10 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
     (*link)->wait_for_plan_or_request(std::chrono::nanoseconds(
         std::clamp<std::int64_t>(next_state - platform::now_ns(), 0, 50'000'000)));
   }
-  planner->wait();  // it ends after its duration, having written its report
+  // It ends after its duration, having written its report.
+  if (const int status = planner->wait(); status != 0) {
+    return Error{ErrorCode::kIo, "the planner process ended with status " + std::to_string(status)};
+  }
   if (out.plans == 0) return Error{ErrorCode::kIo, "no plan arrived from the planner"};
   out.mean_plan_bytes = bytes / static_cast<double>(out.plans);
   return out;
