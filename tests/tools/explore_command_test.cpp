@@ -63,7 +63,7 @@ TEST(ExploreCommand, ExploresASmallMapWithoutCollisionAndWritesReportAndPicture)
   const std::string image = ::testing::TempDir() + "grip-explore.png";
   const CommandRun r =
       run("explore --map " + map +
-          " --robot dd-vel --time-scale 4 --max-sim-time 20 --domain 81 --report " + report +
+          " --robot dd-vel --time-scale 2 --max-sim-time 20 --domain 81 --report " + report +
           " --image " + image);
   ASSERT_TRUE(r.status == 0 || r.status == 3) << r.output;  // complete, or timed out
   expect_a_sane_run(read_json(report), r.output);
@@ -85,7 +85,7 @@ TEST(ExploreCommand, SimulatorAndPlannerWorkAsTwoProcesses) {
   ASSERT_EQ(posix_spawn(&planner, kGrip.c_str(), nullptr, nullptr, argv.data(), environ), 0);
   const CommandRun r =
       run("sim --map " + map +
-          " --robot dd-vel --time-scale 4 --max-sim-time 20 --domain 82 --report " + report);
+          " --robot dd-vel --time-scale 2 --max-sim-time 20 --domain 82 --report " + report);
   kill(planner, SIGTERM);  // a planner stops on SIGTERM, like Ctrl-C
   int status = 0;
   waitpid(planner, &status, 0);
