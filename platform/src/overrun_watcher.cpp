@@ -82,6 +82,14 @@ Status check_other_threads_block_sigxcpu() {
 
 }  // namespace
 
+namespace {
+std::atomic<int> g_running_watchers{0};
+}  // namespace
+
+bool OverrunWatcher::active() noexcept {
+  return g_running_watchers.load(std::memory_order_acquire) > 0;
+}
+
 Result<OverrunWatcher> OverrunWatcher::start() {
   sigset_t sigxcpu;
   (void)os_call("sigemptyset", [&] { return ::sigemptyset(&sigxcpu); });
@@ -118,6 +126,7 @@ Result<OverrunWatcher> OverrunWatcher::start() {
     return thread.error();
   }
   state->thread.emplace(std::move(thread).value());
+  g_running_watchers.fetch_add(1, std::memory_order_acq_rel);
   return OverrunWatcher(std::move(state));
 }
 
@@ -166,6 +175,7 @@ void OverrunWatcher::stop() noexcept {
   GRIP_ASSERT(woken.ok());  // an eventfd at 1 cannot overflow
   state_->thread->join();
   state_->thread.reset();
+  g_running_watchers.fetch_sub(1, std::memory_order_acq_rel);
   close_fd(state_->signal_fd);
   close_fd(state_->wake_fd);
 }

@@ -1,5 +1,7 @@
 #include "grip/platform/scheduling.hpp"
 
+#include "grip/platform/overrun_watcher.hpp"
+
 #include <linux/capability.h>
 #include <pthread.h>
 #include <sched.h>
@@ -64,7 +66,8 @@ int set_deadline(const SchedulingRequest& request) noexcept {
   SchedAttr attr{};
   attr.size = sizeof(SchedAttr);
   attr.sched_policy = kSchedDeadline;
-  attr.sched_flags = kSchedFlagDlOverrun;
+  // SIGXCPU on an overrun only where a watcher counts it: unwatched, it would kill the process.
+  attr.sched_flags = OverrunWatcher::active() ? kSchedFlagDlOverrun : 0;
   attr.sched_runtime = static_cast<std::uint64_t>(request.runtime.count());
   attr.sched_deadline = static_cast<std::uint64_t>(request.deadline.count());
   attr.sched_period = static_cast<std::uint64_t>(request.period.count());

@@ -35,6 +35,11 @@ class OverrunWatcher {
   OverrunWatcher& operator=(const OverrunWatcher&) = delete;
   ~OverrunWatcher();  // stop()
 
+  // Whether a watcher is running in this process. apply_scheduling asks for SIGXCPU on overruns
+  // (SCHED_FLAG_DL_OVERRUN) only then: without a watcher the signal would kill the process, so
+  // an overrun is left to the kernel's throttling, uncounted.
+  static bool active() noexcept;
+
   // SIGXCPU signals counted so far (kept after stop()); 0 for a moved-from watcher.
   std::uint64_t overruns() const noexcept;
 

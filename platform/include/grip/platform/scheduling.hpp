@@ -61,8 +61,8 @@ struct SchedulingOutcome {
 // Applies `request` to the calling thread (see the file comment for the order). Errors:
 // kInvalidArgument when validate() refuses the request; kIo when an explicitly requested policy
 // is refused (the message says why, as fallback_reason would) or, for kAuto, when even
-// SCHED_OTHER is refused. SCHED_DEADLINE is set with SCHED_FLAG_DL_OVERRUN: a thread that
-// exhausts its runtime makes the kernel send SIGXCPU to the process.
+// SCHED_OTHER is refused. SCHED_DEADLINE is set with SCHED_FLAG_DL_OVERRUN while an OverrunWatcher
+// runs: a thread that exhausts its runtime makes the kernel send SIGXCPU to the process.
 Result<SchedulingOutcome> apply_scheduling(const SchedulingRequest& request);
 
 // The calling thread's policy as the kernel reports it (sched_getscheduler). SCHED_RR counts as
