@@ -98,6 +98,7 @@ TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
   };
   std::vector<std::uint64_t> cycles;
   std::vector<std::uint64_t> start_times;
+  std::size_t moving_plans = 0;
   std::optional<grip_msg_PlannerStatus> status;
   int tick = 0;
   const auto until = std::chrono::steady_clock::now() + 30s;
@@ -117,7 +118,11 @@ TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
       double duration = 0.0;
       for (std::uint32_t i = 0; i < plan->steps._length; ++i)
         duration += plan->steps._buffer[i].duration_s;
-      EXPECT_GE(duration, 0.05 - 1e-9) << "a plan covers at least the next cycle";
+      // A plan covers at least the next cycle, or has no steps: brake from its start.
+      if (plan->steps._length > 0) {
+        EXPECT_GE(duration, 0.05 - 1e-9) << "a plan covers at least the next cycle";
+        ++moving_plans;
+      }
       EXPECT_EQ(plan->kind, grip_msg_DD_VELOCITY);
     }
     if (auto s = link.take_status()) status = s;
@@ -129,6 +134,7 @@ TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
 
   EXPECT_EQ(link.plans_rejected(), 0U);
   ASSERT_GT(cycles.size(), 20U);
+  EXPECT_GT(moving_plans, 10U) << "the planner hardly ever found a plan";
   for (std::size_t i = 1; i < cycles.size(); ++i) {
     EXPECT_GT(cycles[i], cycles[i - 1]) << "plans out of order";
     EXPECT_GT(start_times[i], start_times[i - 1]);
