@@ -6,8 +6,6 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -17,13 +15,12 @@
 #include <thread>
 #include <vector>
 
+#include "child_process.hpp"
 #include "cross_process_plan.hpp"
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "plan.h"
-
-extern char** environ;
 
 namespace grip::platform::dds {
 namespace {
@@ -35,7 +32,6 @@ using namespace cross_process;
 TEST(DdsCrossProcess, PlansCrossLoopbackAndAKilledWriterIsNoticed) {
   std::string writer_program = GRIP_BINARY_DIR "/bin/grip_dds_plan_writer";
   ASSERT_EQ(access(writer_program.c_str(), X_OK), 0) << writer_program;
-  std::vector<char*> argv{writer_program.data(), nullptr};
 
   Result<Participant> participant = Participant::create(kDomain);
   ASSERT_TRUE(participant.ok()) << participant.error().message;
@@ -43,15 +39,8 @@ TEST(DdsCrossProcess, PlansCrossLoopbackAndAKilledWriterIsNoticed) {
       Reader<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, "grip_plan", plan_qos());
   ASSERT_TRUE(reader.ok()) << reader.error().message;
 
-  pid_t child = 0;
-  ASSERT_EQ(posix_spawn(&child, writer_program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
-  struct Reaper {
-    pid_t pid;
-    ~Reaper() {
-      kill(pid, SIGKILL);
-      waitpid(pid, nullptr, 0);
-    }
-  } reaper{child};
+  auto child = grip::testing::ChildProcess::spawn({writer_program});
+  ASSERT_TRUE(child.has_value()) << writer_program;
 
   ASSERT_TRUE(reader->wait_for_writers(1, 10s).ok()) << "child writer never matched";
 
@@ -83,7 +72,7 @@ TEST(DdsCrossProcess, PlansCrossLoopbackAndAKilledWriterIsNoticed) {
   EXPECT_EQ(before->alive_count, 1U);
 
   // Kill the writer's process: no goodbye messages, only the lease (500 ms) can tell.
-  ASSERT_EQ(kill(child, SIGKILL), 0);
+  child->kill(SIGKILL);
   const auto killed_at = std::chrono::steady_clock::now();
   bool noticed = false;
   while (!noticed && std::chrono::steady_clock::now() - killed_at < 5s) {

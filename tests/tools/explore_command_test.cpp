@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -15,9 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "child_process.hpp"
 #include "grip_command.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -76,19 +74,14 @@ TEST(ExploreCommand, ExploresASmallMapWithoutCollisionAndWritesReportAndPicture)
 TEST(ExploreCommand, SimulatorAndPlannerWorkAsTwoProcesses) {
   const std::string map = write_small_map();
   const std::string report = ::testing::TempDir() + "grip-sim-report.json";
-  std::vector<std::string> args{kGrip,      "planner", "--robot",           "dd-vel",
-                                "--domain", "82",      "--startup-timeout", "60"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t planner = 0;
-  ASSERT_EQ(posix_spawn(&planner, kGrip.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  auto planner = grip::testing::ChildProcess::spawn(
+      {kGrip, "planner", "--robot", "dd-vel", "--domain", "82", "--startup-timeout", "60"});
+  ASSERT_TRUE(planner.has_value());
   const CommandRun r =
       run("sim --map " + map +
           " --robot dd-vel --time-scale 2 --max-sim-time 20 --domain 82 --report " + report);
-  kill(planner, SIGTERM);  // a planner stops on SIGTERM, like Ctrl-C
-  int status = 0;
-  waitpid(planner, &status, 0);
+  planner->kill(SIGTERM);  // a planner stops on SIGTERM, like Ctrl-C
+  const int status = planner->wait();
   ASSERT_TRUE(r.status == 0 || r.status == 3) << r.output;
   expect_a_sane_run(read_json(report), r.output);
   EXPECT_TRUE(WIFEXITED(status)) << "the planner did not stop cleanly on SIGTERM";

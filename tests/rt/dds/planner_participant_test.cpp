@@ -6,8 +6,6 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -19,11 +17,10 @@
 #include <thread>
 #include <vector>
 
+#include "child_process.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "vehicle_side.hpp"
-
-extern char** environ;
 
 namespace grip::rt::dds {
 namespace {
@@ -280,8 +277,6 @@ TEST(PlannerParticipant, AKilledControllerIsNoticedThroughLiveliness) {
   constexpr platform::dds::DomainId kDomain = 72;
   std::string program = GRIP_BINARY_DIR "/bin/grip_vehicle_controller_probe";
   ASSERT_EQ(access(program.c_str(), X_OK), 0) << program;
-  std::string domain = std::to_string(kDomain);
-  std::vector<char*> argv{program.data(), domain.data(), nullptr};
 
   // The planner's status, watched from here.
   auto participant = platform::dds::Participant::create(kDomain).value();
@@ -299,20 +294,13 @@ TEST(PlannerParticipant, AKilledControllerIsNoticedThroughLiveliness) {
 
   RunningPlanner planner(planner_config(kDomain, 0.0));
   ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
-  pid_t child = 0;
-  ASSERT_EQ(posix_spawn(&child, program.c_str(), nullptr, nullptr, argv.data(), environ), 0);
-  struct Reaper {
-    pid_t pid;
-    ~Reaper() {
-      kill(pid, SIGKILL);
-      waitpid(pid, nullptr, 0);
-    }
-  } reaper{child};
+  auto child = grip::testing::ChildProcess::spawn({program, std::to_string(kDomain)});
+  ASSERT_TRUE(child.has_value()) << program;
 
   ASSERT_TRUE(eventually(
       [&] { return latest() && status->vehicle_alive && status->plan_subscribers == 1; }, 20000ms))
       << "the controller process never came up";
-  kill(child, SIGKILL);
+  child->kill(SIGKILL);
   const auto killed = std::chrono::steady_clock::now();
   EXPECT_TRUE(eventually(
       [&] { return latest() && !status->vehicle_alive && status->plan_subscribers == 0; }, 5000ms))
