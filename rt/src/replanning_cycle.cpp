@@ -101,6 +101,23 @@ template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run(
     FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
     FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
+  const std::int64_t stop_at = deadline_ns - config_.safety_margin_ns;
+  return run_growing(now_ns, [&] { return now_ns() >= stop_at; }, choose_target);
+}
+
+template <VehicleModel V>
+CycleOutcome ReplanningCycle<V>::run_for_edges(
+    FunctionRef<std::int64_t()> now_ns, std::uint64_t edges,
+    FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
+  const std::uint64_t stop_at = planner_.stats().edges_added + edges;
+  return run_growing(now_ns, [&] { return planner_.stats().edges_added >= stop_at; },
+                     choose_target);
+}
+
+template <VehicleModel V>
+CycleOutcome ReplanningCycle<V>::run_growing(
+    FunctionRef<std::int64_t()> now_ns, FunctionRef<bool()> stop_growing,
+    FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
   CycleOutcome out;
   const std::int64_t cycle_start = now_ns();
   // 1. The new root: T along the committed plan, when the plan covers T.
@@ -136,11 +153,10 @@ CycleOutcome ReplanningCycle<V>::run(
   blocked_noted_ = false;
   out.retain_ns = now_ns() - cycle_start;
 
-  // 2. Anytime growth, stopping itself before the deadline.
+  // 2. Anytime growth, stopping itself before the deadline (or after its edges).
   const std::uint64_t edges_before = planner_.stats().edges_added;
-  const std::int64_t stop_at = deadline_ns - config_.safety_margin_ns;
   if (out.retain_status == RetainStatus::kOk) {
-    const SolveResult grown = planner_.solve([&] { return now_ns() >= stop_at; });
+    const SolveResult grown = planner_.solve(stop_growing);
     out.pool_exhausted = grown.reason == StopReason::kPoolExhausted;  // this cycle's growth
   }
   out.edges_added = planner_.stats().edges_added - edges_before;

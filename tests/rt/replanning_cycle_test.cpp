@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "grip/planner/contingency.hpp"
 #include "grip/platform/alloc_counter.hpp"
@@ -67,6 +68,36 @@ TEST_F(ReplanningCycleTest, ThePlannerStopsItselfBeforeTheDeadlineWithItsMargin)
     const CycleOutcome out = cycle->run([this] { return clock.read(); }, release + kBudgetNs);
     EXPECT_LE(clock.now, release + kBudgetNs - config.safety_margin_ns + 2 * clock.step_ns);
     EXPECT_GT(out.edges_added, 0U);
+  }
+}
+
+TEST_F(ReplanningCycleTest, LockstepGrowsItsEdgesWhateverTheClockAndReproducesARun) {
+  // A clock that races ahead: a deadline would end growth at once, an edge budget does not.
+  const auto racing = [this] { return clock.now += 1'000'000'000; };
+  const auto best = [](const Planner<Car>& planner) { return planner.best_state(); };
+  std::vector<PlanStep> first_run;
+  for (int i = 0; i < 10; ++i) {
+    const CycleOutcome out = cycle->run_for_edges(racing, 300, best);
+    ASSERT_EQ(out.retain_status, RetainStatus::kOk);
+    if (!out.solved) {
+      EXPECT_GE(out.edges_added, 300U);
+      EXPECT_LT(out.edges_added, 310U);  // one iteration may add a few more
+    }
+    for (const PlanStep& step : cycle->plan()) first_run.push_back(step);
+  }
+  ASSERT_FALSE(first_run.empty());
+  // The same start and seed again, with a different clock: the same plans, step for step.
+  SetUp();
+  std::vector<PlanStep> second_run;
+  const auto slow = [this] { return clock.now += 1; };
+  for (int i = 0; i < 10; ++i) {
+    cycle->run_for_edges(slow, 300, best);
+    for (const PlanStep& step : cycle->plan()) second_run.push_back(step);
+  }
+  ASSERT_EQ(first_run.size(), second_run.size());
+  for (std::size_t i = 0; i < first_run.size(); ++i) {
+    EXPECT_EQ(first_run[i].control, second_run[i].control) << i;
+    EXPECT_EQ(first_run[i].duration_s, second_run[i].duration_s) << i;
   }
 }
 

@@ -43,6 +43,7 @@ struct ExploreOptions {
   double max_sim_time_s = 900.0;
   bool no_safety = false;
   bool lockstep = false;
+  std::uint32_t lockstep_edges = 1000;
   unsigned domain = 0;
   std::string report;
   std::string image;
@@ -114,7 +115,12 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
   j["world"] = world.name;
   j["robot"] = o.robot;
   j["seed"] = o.seed;
-  j["time_scale"] = o.time_scale;
+  j["lockstep"] = o.lockstep;
+  if (o.lockstep) {
+    j["lockstep_edges"] = o.lockstep_edges;
+  } else {
+    j["time_scale"] = o.time_scale;
+  }
   j["safety"] = !o.no_safety;
   j["start"] = {world.start.x_m, world.start.y_m, world.start.theta_rad};
   j["max_speed_m_s"] = r.max_speed_m_s;
@@ -187,6 +193,7 @@ sim::SimRunConfig sim_config(const ExploreOptions& o, VehicleKind robot, const W
   c.start_y_m = world.start.y_m;
   c.start_theta_rad = world.start.theta_rad;
   c.time_scale = o.time_scale;
+  c.lockstep = o.lockstep;
   c.max_sim_time_s = o.max_sim_time_s;
   return c;
 }
@@ -202,9 +209,6 @@ std::function<void(const sim::SimProgress&)> progress_line() {
 }
 
 Status validate(const ExploreOptions& o) {
-  if (o.lockstep) {
-    return invalid_argument("--lockstep is not available yet: run in real time with --time-scale");
-  }
   if (!(o.time_scale > 0.0 && o.time_scale <= 50.0)) {
     return invalid_argument("--time-scale must be in (0, 50] (got " + std::to_string(o.time_scale) +
                             ")");
@@ -252,6 +256,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     pc.robot = *robot;
     pc.seed = o.seed;
     pc.no_safety = o.no_safety;
+    pc.lockstep_edges = o.lockstep_edges;
     pc.startup_timeout = std::chrono::seconds(30);
     auto created = rt::dds::PlannerParticipant::create(pc);
     if (!created) {
@@ -285,7 +290,9 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
       ->capture_default_str();
   cmd->add_option("--max-sim-time", o.max_sim_time_s, "Give up after this much simulated time [s]")
       ->capture_default_str();
-  cmd->add_flag("--lockstep", o.lockstep, "Deterministic: wait for each plan (not available yet)");
+  cmd->add_flag("--lockstep", o.lockstep,
+                "Deterministic: the simulator waits for each plan, the planner grows a fixed number "
+                "of edges per cycle; as fast as the machine allows (--time-scale unused)");
   cmd->add_option("--domain", o.domain, "DDS domain id")->capture_default_str();
   cmd->add_option("--report", o.report, "Write the JSON report here");
   cmd->add_option("--image", o.image, "Draw the run into this PNG");
@@ -298,6 +305,10 @@ void register_explore_commands(CLI::App& app) {
   CLI::App* e = app.add_subcommand(
       "explore", "Explore an unknown workspace: simulator and planner as two DDS participants");
   add_common_options(e, *explore);
+  e->add_option("--lockstep-edges", explore->lockstep_edges,
+                "With --lockstep: edges the planner grows per cycle")
+      ->check(CLI::Range(1U, 200'000U))
+      ->capture_default_str();
   e->add_flag("--no-safety", explore->no_safety,
               "The paper's ablation: plans are not checked for a safe braking maneuver");
   e->callback([explore]() {

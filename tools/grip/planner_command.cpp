@@ -28,6 +28,7 @@ struct PlannerOptions {
   double margin_ms = -1.0;
   std::string policy = "auto";
   std::uint32_t max_edges = 0;
+  std::uint32_t lockstep_edges = 1000;
   double lease_ms = 500.0;
   double duration_s = 0.0;
   double startup_timeout_s = 0.0;
@@ -77,6 +78,7 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o) {
   config.budget_s = o.budget_ms / 1e3;
   config.margin_s = o.margin_ms < 0.0 ? -1.0 : o.margin_ms / 1e3;
   config.max_edges = o.max_edges;
+  config.lockstep_edges = o.lockstep_edges;
   config.seed = o.seed;
   config.liveliness_lease = std::chrono::nanoseconds(static_cast<std::int64_t>(o.lease_ms * 1e6));
   config.duration_s = o.duration_s;
@@ -197,6 +199,10 @@ void register_planner_command(CLI::App& app) {
                   "Growth stops this long before the deadline [ms] (default: budget/5, >= 2)");
   cmd->add_option("--policy", o->policy, "auto, deadline, fifo or other")->capture_default_str();
   cmd->add_option("--max-edges", o->max_edges, "Edge pool (default: 400 per ms of budget)");
+  cmd->add_option("--lockstep-edges", o->lockstep_edges,
+                  "Edges per cycle when the vehicle runs in lockstep (a `grip sim --lockstep`)")
+      ->check(CLI::Range(1U, 200'000U))
+      ->capture_default_str();
   cmd->add_option("--lease-ms", o->lease_ms, "Liveliness lease of every endpoint [ms]")
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Planner seed")->capture_default_str();

@@ -55,7 +55,9 @@ struct StateSample {
   std::uint64_t stamp_ns = 0;
   std::uint64_t sequence_number = 0;
   std::uint64_t plan_cycle = 0;
+  std::uint64_t map_sequence = 0;
   double time_scale = 1.0;
+  bool lockstep = false;
 };
 
 struct PlanSlot {
@@ -176,7 +178,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   };
 
   PlannerParticipantFor(const PlannerParticipantConfig& config, const V& vehicle, Entities entities,
-                        platform::Wakeup wakeup);
+                        platform::Wakeup wakeup, platform::Wakeup lockstep_inputs);
 
   // Receive thread.
   void receive_main();
@@ -191,6 +193,10 @@ class PlannerParticipantFor final : public PlannerParticipant {
   // Planning thread (and run() during start-up, before the planning thread exists).
   bool apply_tiles(CellBox& newly_blocked) noexcept;
   CycleOutcome cycle_body(std::int64_t release_ns, std::int64_t deadline_ns) noexcept;
+  void chain_plan_start(std::int64_t release_ns) noexcept;
+  CycleOutcome plan_cycle(std::int64_t started_ns, bool map_changed, const CellBox& newly_blocked,
+                          std::int64_t deadline_ns) noexcept;
+  Result<PlannerParticipantReport> run_lockstep();
 
   // Publish thread.
   void publish_main();
@@ -201,6 +207,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   Status create_cycle(double time_scale, bool explore);
   void choose_frontier_target(bool map_changed) noexcept;
   void check_vehicle_follows(const StateSample& measured) noexcept;
+  PlannerParticipantReport final_report(PlannerParticipantReport report) const;
   std::string progress_line(const PlannerParticipantReport& report) const;
   static State state_of(const StateSample& sample) noexcept {
     State q;
@@ -212,6 +219,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   V vehicle_;
   Entities dds_;
   platform::Wakeup wakeup_;
+  platform::Wakeup lockstep_inputs_;  // lockstep: a state or map tiles were handed over
   std::atomic<bool> threads_stop_{false};
 
   // Receive thread only.
@@ -220,6 +228,8 @@ class PlannerParticipantFor final : public PlannerParticipant {
   int tiles_x_ = 0;
   int tiles_y_ = 0;
   std::uint64_t last_state_stamp_ = 0;
+  std::uint64_t last_state_sequence_ = 0;
+  bool lockstep_seen_ = false;  // the vehicle's states ask for lockstep
   std::optional<grip_msg_Goal> pending_goal_;  // arrived before the map: checked once it exists
   RateLimitedLog log_;
   bool was_alive_ = false;
@@ -256,6 +266,9 @@ class PlannerParticipantFor final : public PlannerParticipant {
   double target_y_m_ = 0.0;
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
   double time_scale_ = 1.0;
+  bool lockstep_ = false;  // from the first state: plan once per state, by edge count
+  std::uint64_t lockstep_edges_ = 0;
+  StateSample first_state_;  // the state start-up planned from
   std::atomic<std::int64_t> period_wall_ns_{0};  // set at start-up, read by the publish thread
   std::uint64_t state_sequence_ = 0;
   std::uint64_t chain_start_ns_ = 0;  // vehicle time at which the first plan from this tree starts
@@ -307,12 +320,14 @@ Result<std::unique_ptr<PlannerParticipant>> PlannerParticipantFor<V>::create(
   }
   auto wakeup = platform::Wakeup::create();
   if (!wakeup) return wakeup.error();
+  auto lockstep_inputs = platform::Wakeup::create();
+  if (!lockstep_inputs) return lockstep_inputs.error();
   std::unique_ptr<PlannerParticipantFor> self(new PlannerParticipantFor(
       config, vehicle,
       Entities{std::move(participant).value(), std::move(states).value(), std::move(maps).value(),
                std::move(goals).value(), std::move(requests).value(), std::move(plans).value(),
                std::move(status).value(), std::move(waitset).value()},
-      std::move(wakeup).value()));
+      std::move(wakeup).value(), std::move(lockstep_inputs).value()));
   // Service threads start now: before any SCHED_DEADLINE thread, which could not create them.
   self->receive_thread_ = std::thread([raw = self.get()] { raw->receive_main(); });
   self->publish_thread_ = std::thread([raw = self.get()] { raw->publish_main(); });
@@ -322,11 +337,13 @@ Result<std::unique_ptr<PlannerParticipant>> PlannerParticipantFor<V>::create(
 template <VehicleModel V>
 PlannerParticipantFor<V>::PlannerParticipantFor(const PlannerParticipantConfig& config,
                                                 const V& vehicle, Entities entities,
-                                                platform::Wakeup wakeup)
+                                                platform::Wakeup wakeup,
+                                                platform::Wakeup lockstep_inputs)
     : config_(config),
       vehicle_(vehicle),
       dds_(std::move(entities)),
       wakeup_(std::move(wakeup)),
+      lockstep_inputs_(std::move(lockstep_inputs)),
       receiver_(config.max_map_cells) {}
 
 template <VehicleModel V>
@@ -364,6 +381,7 @@ void PlannerParticipantFor<V>::receive_main() {
     }
     hand_over_tiles();
     check_liveliness();
+    if (lockstep_seen_) lockstep_inputs_.signal();
   }
 }
 
@@ -374,6 +392,11 @@ void PlannerParticipantFor<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleSt
     if (!taken.ok() || *taken == 0) return;
     for (std::size_t i = 0; i < *taken; ++i) {
       const grip_msg_VehicleState& msg = buffer[i];
+      // A lockstep simulator repeats the state it waits on (for a planner that joins late):
+      // a repeat is neither new nor an error.
+      if (msg.stamp_ns == last_state_stamp_ && msg.sequence_number == last_state_sequence_) {
+        continue;
+      }
       Verdict verdict = check_sample_freshness(buffer.info(i));
       if (verdict.ok()) verdict = check_vehicle_state(msg, vehicle_, last_state_stamp_);
       const std::int64_t now = platform::now_ns();
@@ -383,13 +406,17 @@ void PlannerParticipantFor<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleSt
         continue;
       }
       last_state_stamp_ = msg.stamp_ns;
+      last_state_sequence_ = msg.sequence_number;
+      lockstep_seen_ = msg.lockstep;
       clock_.observe(msg.stamp_ns, now, msg.time_scale);
       StateSample& sample = states_->write_buffer();
       std::copy(std::begin(msg.state), std::end(msg.state), sample.state.begin());
       sample.stamp_ns = msg.stamp_ns;
       sample.sequence_number = msg.sequence_number;
       sample.plan_cycle = msg.plan_cycle;
+      sample.map_sequence = msg.map_sequence;
       sample.time_scale = msg.time_scale;
+      sample.lockstep = msg.lockstep;
       states_->publish();
     }
   }
@@ -546,22 +573,20 @@ bool PlannerParticipantFor<V>::apply_tiles(CellBox& newly_blocked) noexcept {
   return applied;
 }
 
+// Real time: one cycle per period of the PeriodicLoop, growth until the deadline.
 template <VehicleModel V>
 CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
                                                   std::int64_t deadline_ns) noexcept {
   const std::int64_t start = platform::now_ns();
   CellBox newly_blocked;
   const bool map_changed = apply_tiles(newly_blocked);
-  if (map_changed) cycle_->note_newly_blocked(newly_blocked);
-  if (goals_->update()) {
-    const GoalRegion& goal = goals_->read_buffer();
-    cycle_->set_goal(goal);  // a goal ends exploration
-    exploring_ = false;
-    target_x_m_ = goal.x_m;
-    target_y_m_ = goal.y_m;
-  }
   if (states_->update()) check_vehicle_follows(states_->read_buffer());
+  chain_plan_start(release_ns);
+  return plan_cycle(start, map_changed, newly_blocked, deadline_ns);
+}
 
+template <VehicleModel V>
+void PlannerParticipantFor<V>::chain_plan_start(std::int64_t release_ns) noexcept {
   // The plan starts at t[i], the next release, in vehicle time. Consecutive plans start exactly
   // T apart, on the vehicle's own integration grid (the stamps of its states), so that each
   // starts where the one before put the vehicle; the chain is re-anchored when the clocks have
@@ -579,21 +604,34 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
     plan_start_ns_ =
         last_state_stamp_ns_ + static_cast<std::uint64_t>(std::max(0.0, cycles)) * cycle_ns;
   }
+}
 
-  const auto now = [] { return platform::now_ns(); };
-  CycleOutcome out;
-  if (exploring_) {
-    choose_frontier_target(map_changed);
-    out = cycle_->run(now, deadline_ns, [this](const Planner<V>& planner) {
-      return explored_ ? planner.root_state()
-                       : selector_->select(planner, cycle_->cycle_steps()).state;
-    });
-  } else {
-    out = cycle_->run(now, deadline_ns);
+// Both modes: the cycle's inputs, growth (until the deadline, or by edge count in lockstep),
+// and the hand-over of its plan and status to the publish thread.
+template <VehicleModel V>
+CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, bool map_changed,
+                                                  const CellBox& newly_blocked,
+                                                  std::int64_t deadline_ns) noexcept {
+  if (map_changed) cycle_->note_newly_blocked(newly_blocked);
+  if (goals_->update()) {
+    const GoalRegion& goal = goals_->read_buffer();
+    cycle_->set_goal(goal);  // a goal ends exploration
+    exploring_ = false;
+    target_x_m_ = goal.x_m;
+    target_y_m_ = goal.y_m;
   }
+  if (exploring_) choose_frontier_target(map_changed);
+  const auto now = [] { return platform::now_ns(); };
+  const auto choose = [this](const Planner<V>& planner) {
+    if (!exploring_) return planner.best_state();
+    return explored_ ? planner.root_state()
+                     : selector_->select(planner, cycle_->cycle_steps()).state;
+  };
+  const CycleOutcome out = lockstep_ ? cycle_->run_for_edges(now, lockstep_edges_, choose)
+                                     : cycle_->run(now, deadline_ns, choose);
   ++cycles_;
   const std::int64_t end = platform::now_ns();
-  misses_ += end > deadline_ns ? 1 : 0;
+  misses_ += !lockstep_ && end > deadline_ns ? 1 : 0;
 
   {
     // Planned during (t[i-1], t[i]) for execution from t[i], the next release. Without a plan
@@ -789,6 +827,7 @@ Status PlannerParticipantFor<V>::start_up() {
                          platform::now_ns() - *synced_at >= config_.goal_grace.count();
     if (grid_ && map_in_sync_ && state && (goal || explore)) {
       if (!cycle_) {
+        lockstep_ = state->lockstep;
         if (Status s = create_cycle(state->time_scale, explore); !s) return s;
       }
       const State q0 = state_of(*state);
@@ -801,6 +840,7 @@ Status PlannerParticipantFor<V>::start_up() {
       if (started_cycle.ok()) {
         state_sequence_ = state->sequence_number;
         last_state_stamp_ns_ = state->stamp_ns;
+        first_state_ = *state;
         return Ok{};
       }
       refusal = started_cycle.error().message;  // e.g. the start is not known free yet
@@ -829,10 +869,14 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
   planner_config.integration_step_s = config_.cycle_s / std::ceil(config_.cycle_s / 0.05 - 1e-9);
   planner_config.seed = config_.seed;
   if (config_.no_safety) planner_config.safety = SafetyCheck::kNone;
+  // Lockstep grows a fixed number of edges per cycle; the pools hold a few cycles' growth.
+  lockstep_edges_ = config_.lockstep_edges;
+  const double default_edges =
+      lockstep_ ? 4.0 * static_cast<double>(lockstep_edges_) : 400.0 * wall_budget_ms;
   planner_config.max_edges =
       config_.max_edges != 0
           ? config_.max_edges
-          : static_cast<std::uint32_t>(std::clamp(400.0 * wall_budget_ms, 2000.0, 2e5));
+          : static_cast<std::uint32_t>(std::clamp(default_edges, 2000.0, 2e5));
   planner_config.max_trajectories = planner_config.max_edges / 2;
   CycleConfig cycle_config;
   cycle_config.cycle_s = config_.cycle_s;
@@ -840,7 +884,7 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
                                              : std::max(2.0, wall_budget_ms / 5.0);
   // Path selection runs after growth (about 0.5 us per edge here): the margin leaves it room.
   if (explore) margin_ms += static_cast<double>(planner_config.max_edges) * 0.5e-3;
-  if (margin_ms >= wall_budget_ms) {
+  if (margin_ms >= wall_budget_ms && !lockstep_) {
     return invalid_argument(
         "the budget (" + std::to_string(wall_budget_ms) +
         " ms of wall clock) leaves no time to grow the tree after a margin of " +
@@ -875,6 +919,7 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
 template <VehicleModel V>
 Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
   if (Status s = start_up(); !s) return s.error();
+  if (lockstep_) return run_lockstep();
 
   PeriodicLoopConfig loop_config;
   const std::int64_t period_wall = period_wall_ns_.load(std::memory_order_relaxed);
@@ -915,10 +960,59 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
   const PeriodicLoopResult& result = (*loop)->join();
   report.policy = std::string(platform::policy_name(result.planner_thread.scheduling.policy));
   report.policy_fallback = result.planner_thread.scheduling.fallback_reason;
-  if (publish_policy_set_.load(std::memory_order_acquire)) report.publish_policy = publish_policy_;
   report.allocations_counted = result.allocations_counted;
   report.heap_allocations_in_loop = result.heap_allocations_in_loop;
   report.usage_in_loop = result.usage_in_loop;
+  return final_report(std::move(report));
+}
+
+// Lockstep: a cycle for each state the vehicle sends, once the map has every update sensed up
+// to it, on this (ordinary) thread: there is no deadline to keep, and none is missed.
+template <VehicleModel V>
+Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
+  PlannerParticipantReport report;
+  report.policy = "lockstep";
+  report.time_scale = time_scale_;
+  const std::int64_t run_until =
+      config_.duration_s > 0.0 ? platform::now_ns() + ns_of(config_.duration_s)
+                               : std::numeric_limits<std::int64_t>::max();
+  const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
+  StateSample state = first_state_;  // start-up's state: the first cycle plans for it
+  bool have_state = true;
+  std::int64_t next_progress = platform::now_ns();
+  while (!stop_.load(std::memory_order_acquire) && platform::now_ns() < run_until) {
+    if (!have_state) {
+      if (!states_->update()) {
+        static_cast<void>(lockstep_inputs_.wait(std::chrono::milliseconds(50)));
+        continue;
+      }
+      state = states_->read_buffer();
+    }
+    have_state = false;
+    const std::int64_t start = platform::now_ns();
+    CellBox newly_blocked;
+    bool map_changed = apply_tiles(newly_blocked);
+    while (map_sequence_ < state.map_sequence && !stop_.load(std::memory_order_acquire)) {
+      static_cast<void>(lockstep_inputs_.wait(std::chrono::milliseconds(50)));
+      map_changed = apply_tiles(newly_blocked) || map_changed;
+    }
+    check_vehicle_follows(state);
+    plan_start_ns_ = state.stamp_ns + cycle_ns;  // t[i] = the state's time + T
+    plan_cycle(start, map_changed, newly_blocked, 0);
+    ++report.cycles;
+    report.compute.record(platform::now_ns() - start);
+    if (config_.on_progress && platform::now_ns() >= next_progress) {
+      next_progress += 250'000'000;
+      config_.on_progress(progress_line(report));
+    }
+  }
+  return final_report(std::move(report));
+}
+
+template <VehicleModel V>
+PlannerParticipantReport PlannerParticipantFor<V>::final_report(
+    PlannerParticipantReport report) const {
+  if (publish_policy_set_.load(std::memory_order_acquire)) report.publish_policy = publish_policy_;
   report.plans_committed = plans_committed_;
   report.plans_superseded = plans_->published() - plans_published_.load() - write_failures_.load();
   report.plans_published = plans_published_.load();

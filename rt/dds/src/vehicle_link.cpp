@@ -1,5 +1,6 @@
 #include "grip/rt/dds/vehicle_link.hpp"
 
+#include <chrono>
 #include <utility>
 
 namespace grip::rt::dds {
@@ -35,10 +36,14 @@ Result<std::unique_ptr<VehicleLink>> VehicleLink::create(const VehicleLinkConfig
   for (const dds_entity_t reader : {plans->get(), requests->get()}) {
     if (Status s = waitset->attach_data_available(reader); !s) return s.error();
   }
+  auto status_waitset = pdds::WaitSet::create(*participant);
+  if (!status_waitset) return status_waitset.error();
+  if (Status s = status_waitset->attach_data_available(status->get()); !s) return s.error();
   return std::unique_ptr<VehicleLink>(new VehicleLink(
       config, std::move(map), std::move(participant).value(), std::move(states).value(),
       std::move(maps).value(), std::move(goals).value(), std::move(requests).value(),
-      std::move(plans).value(), std::move(status).value(), std::move(waitset).value()));
+      std::move(plans).value(), std::move(status).value(), std::move(waitset).value(),
+      std::move(status_waitset).value()));
 }
 
 VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
@@ -46,7 +51,8 @@ VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
                          pdds::Writer<grip_msg_MapUpdate> maps, pdds::Writer<grip_msg_Goal> goals,
                          pdds::Reader<grip_msg_MapRequest> requests,
                          pdds::Reader<grip_msg_Plan> plans,
-                         pdds::Reader<grip_msg_PlannerStatus> status, pdds::WaitSet waitset)
+                         pdds::Reader<grip_msg_PlannerStatus> status, pdds::WaitSet waitset,
+                         pdds::WaitSet status_waitset)
     : kind_(config.kind),
       participant_(std::move(participant)),
       states_(std::move(states)),
@@ -56,6 +62,7 @@ VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
       plans_(std::move(plans)),
       status_(std::move(status)),
       waitset_(std::move(waitset)),
+      status_waitset_(std::move(status_waitset)),
       sender_(std::move(map)),
       plan_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_Plan, 4>>(&grip_msg_Plan_desc)),
       request_buffer_(
@@ -126,6 +133,18 @@ std::optional<grip_msg_PlannerStatus> VehicleLink::take_status() {
     newest = (*status_buffer_)[*taken - 1];  // plain data: a copy owns nothing
   }
   return newest;
+}
+
+std::optional<grip_msg_PlannerStatus> VehicleLink::wait_for_status(
+    std::uint64_t min_cycle, std::chrono::nanoseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  std::optional<grip_msg_PlannerStatus> newest;
+  for (;;) {
+    if (auto s = take_status()) newest = s;
+    const auto now = std::chrono::steady_clock::now();
+    if ((newest && newest->cycle >= min_cycle) || now >= until) return newest;
+    static_cast<void>(status_waitset_.wait(until - now));
+  }
 }
 
 bool VehicleLink::planner_alive() const {

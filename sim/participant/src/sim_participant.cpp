@@ -95,16 +95,17 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
                            accepted.front().first <= executor->now_ns();
     return executing ? accepted.front().second : 0;
   };
-  std::uint64_t state_sequence = 0;
+  grip_msg_VehicleState state_msg{};  // the last state published
   const auto publish_state = [&] {
-    grip_msg_VehicleState msg{};
-    msg.stamp_ns = static_cast<std::uint64_t>(executor->now_ns());
-    msg.sequence_number = ++state_sequence;
-    msg.kind = rt::dds::to_wire(V::kKind);
-    rt::dds::state_to_wire<V>(executor->state(), msg.state, msg.state_dim);
-    msg.time_scale = config.time_scale;
-    msg.plan_cycle = executing_cycle();
-    static_cast<void>((*link)->publish_state(msg));
+    state_msg.stamp_ns = static_cast<std::uint64_t>(executor->now_ns());
+    ++state_msg.sequence_number;
+    state_msg.kind = rt::dds::to_wire(V::kKind);
+    rt::dds::state_to_wire<V>(executor->state(), state_msg.state, state_msg.state_dim);
+    state_msg.time_scale = config.lockstep ? 1.0 : config.time_scale;
+    state_msg.lockstep = config.lockstep;
+    state_msg.plan_cycle = executing_cycle();
+    state_msg.map_sequence = (*link)->map_sender().last_sequence();
+    static_cast<void>((*link)->publish_state(state_msg));
   };
   const auto sense = [&] {
     const State& q = executor->state();
@@ -146,20 +147,10 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   bool planner_seen = false;
   bool planner_alive = false;
   std::optional<grip_msg_PlannerStatus> status;
-  std::int64_t wall0 = platform::now_ns();
-  const auto wall_of_tick = [&](std::uint64_t tick) {
-    return wall0 +
-           static_cast<std::int64_t>(static_cast<double>(tick) * dt * 1e9 / config.time_scale);
-  };
+  const std::int64_t wall0 = platform::now_ns();
   std::uint64_t tick = 0;
-  std::int64_t next_progress = wall0;
-  while (!stop.load(std::memory_order_acquire)) {
-    if (!planner_seen && platform::now_ns() - wall0 > config.planner_wait.count()) {
-      report.reason = "no plan from a planner within " +
-                      std::to_string(config.planner_wait.count() / 1'000'000'000) + " s";
-      break;
-    }
-    platform::sleep_until_ns(wall_of_tick(tick + 1));
+  // One integration step of the vehicle: plans take effect, it moves, senses, is recorded.
+  const auto advance = [&] {
     ++tick;
     if (brake_at >= 0 && executor->now_ns() >= brake_at) {
       executor->abandon_plans();
@@ -167,20 +158,6 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     }
     executor->step();
     sense();
-    publish_state();
-    (*link)->answer_map_requests(static_cast<std::uint64_t>(executor->now_ns()));
-    if (const grip_msg_Plan* plan = (*link)->take_plan()) {
-      submit(*plan);
-      planner_seen = true;
-    }
-    if (auto s = (*link)->take_status()) status = s;
-    const bool alive = (*link)->planner_alive();
-    if (planner_alive && !alive) {
-      executor->abandon_plans();  // the planner went silent past its lease
-      ++report.planner_losses;
-    }
-    planner_alive = alive;
-
     const State& q = executor->state();
     report.trajectory.push_back({state_x(q), state_y(q)});
     report.speed_profile.push_back({t_sim(), executor->speed_m_s()});
@@ -191,24 +168,100 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
         coverage_gained_at = t_sim();
       }
     }
+  };
+  const auto watch_planner = [&] {
+    const bool alive = (*link)->planner_alive();
+    if (planner_alive && !alive) {
+      executor->abandon_plans();  // the planner went silent past its lease
+      ++report.planner_losses;
+    }
+    planner_alive = alive;
+  };
+  std::int64_t next_progress = wall0;
+  const auto show_progress = [&] {
     if (progress && platform::now_ns() >= next_progress) {
       next_progress += 250'000'000;
       progress(SimProgress{t_sim(), best_coverage, executor->speed_m_s(),
                            status ? status->cycle : 0, status ? status->misses : 0,
                            executor->stats().collisions});
     }
+  };
+  // Whether the run is over: the planner says no reachable frontier remains, or sim time ran
+  // out, or coverage stopped growing.
+  const auto finished = [&] {
     if (status && status->exploration_complete) {
       report.result = "complete";
-      break;
-    }
-    if (t_sim() >= config.max_sim_time_s) {
+    } else if (t_sim() >= config.max_sim_time_s) {
       report.result = "timeout";
-      break;
-    }
-    if (t_sim() - coverage_gained_at >= config.stuck_after_s) {
+    } else if (t_sim() - coverage_gained_at >= config.stuck_after_s) {
       report.result = "stuck";
       report.reason = "no coverage gained for " + std::to_string(config.stuck_after_s) + " s";
-      break;
+    }
+    return report.result != "error";
+  };
+  const auto no_planner = [&] {
+    report.reason = "no plan from a planner within " +
+                    std::to_string(config.planner_wait.count() / 1'000'000'000) + " s";
+  };
+
+  if (config.lockstep) {
+    // Each state waits for the plan made for it (and the status that goes with it), then the
+    // vehicle runs T: the planner's cycle, however long it took, costs no simulated time.
+    const auto ticks_per_cycle = static_cast<std::uint64_t>(
+        std::max(1L, std::lround(config.cycle_s / dt)));
+    while (!stop.load(std::memory_order_acquire)) {
+      const std::int64_t asked = platform::now_ns();
+      std::int64_t repeated = asked;
+      const grip_msg_Plan* plan = nullptr;
+      while (plan == nullptr && !stop.load(std::memory_order_acquire)) {
+        const std::int64_t now = platform::now_ns();
+        if (now - asked > config.planner_wait.count()) break;
+        if (now - repeated > 250'000'000) {
+          // A planner that joined late never saw it; one that did ignores the repeat.
+          static_cast<void>((*link)->publish_state(state_msg));
+          repeated = now;
+        }
+        (*link)->wait_for_plan_or_request(std::chrono::milliseconds(50));
+        (*link)->answer_map_requests(state_msg.stamp_ns);
+        plan = (*link)->take_plan();
+        if (plan != nullptr && plan->state_sequence < state_msg.sequence_number) plan = nullptr;
+      }
+      if (plan == nullptr) {
+        if (!stop.load()) no_planner();
+        break;
+      }
+      planner_seen = true;
+      submit(*plan);
+      if (auto s = (*link)->wait_for_status(plan->cycle, std::chrono::seconds(1))) status = s;
+      watch_planner();
+      if (finished()) break;
+      for (std::uint64_t i = 0; i < ticks_per_cycle; ++i) advance();
+      publish_state();
+      show_progress();
+    }
+  } else {
+    // Real time: ticks released on an absolute wall-clock timeline, time_scale times faster.
+    const auto wall_of_tick = [&](std::uint64_t n) {
+      return wall0 +
+             static_cast<std::int64_t>(static_cast<double>(n) * dt * 1e9 / config.time_scale);
+    };
+    while (!stop.load(std::memory_order_acquire)) {
+      if (!planner_seen && platform::now_ns() - wall0 > config.planner_wait.count()) {
+        no_planner();
+        break;
+      }
+      platform::sleep_until_ns(wall_of_tick(tick + 1));
+      advance();
+      publish_state();
+      (*link)->answer_map_requests(static_cast<std::uint64_t>(executor->now_ns()));
+      if (const grip_msg_Plan* plan = (*link)->take_plan()) {
+        submit(*plan);
+        planner_seen = true;
+      }
+      if (auto s = (*link)->take_status()) status = s;
+      watch_planner();
+      show_progress();
+      if (finished()) break;
     }
   }
   if (stop.load() && report.result == "error") report.reason = "stopped";

@@ -85,6 +85,11 @@ class ReplanningCycle {
   // latest state that can brake safely, at least T from the root, as usual.
   CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
                    FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
+  // Lockstep (a simulation that waits for each plan): growth adds `edges` edges, fewer only
+  // when the goal is reached or the pools run out, however long it takes, so that a seed
+  // reproduces a run exactly. now_ns only times the phases.
+  CycleOutcome run_for_edges(FunctionRef<std::int64_t()> now_ns, std::uint64_t edges,
+                             FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
 
   // The committed plan, from the root of the current cycle (the state at the start of the
   // next cycle's execution); empty when the vehicle is to brake.
@@ -96,6 +101,8 @@ class ReplanningCycle {
 
  private:
   ReplanningCycle(Planner<V> planner, const CycleConfig& config, std::uint32_t cycle_steps);
+  CycleOutcome run_growing(FunctionRef<std::int64_t()> now_ns, FunctionRef<bool()> stop_growing,
+                           FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
   State predicted_state_without_plan() const noexcept;
   void commit(TreeState s) noexcept;
 

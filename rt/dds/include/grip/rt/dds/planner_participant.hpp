@@ -13,6 +13,10 @@
 //     dds_write (up to max_blocking_time) delays only this thread; the planning thread meanwhile
 //     replaces the pending plan by a newer one, and the replaced one is counted as superseded.
 //
+// Lockstep (a simulator that waits for each plan says so in its states): no periodic thread;
+// run()'s thread plans one cycle for each state, once the map has every update sensed before
+// it (VehicleState.map_sequence), growing a fixed number of edges: a seed reproduces a run.
+//
 // Start-up (run()): the planner waits for the map to be in sync, a vehicle state and a goal,
 // then builds the planner (all allocation happens here) and starts the planning thread.
 // Losing the vehicle (its liveliness lease expires) does not stop planning: the planner keeps
@@ -44,7 +48,11 @@ struct PlannerParticipantConfig {
   double budget_s = 0.025;  // planning time per cycle, in vehicle time
   double margin_s = -1.0;   // growth stops this long before the deadline; < 0: budget / 5, >= 2 ms
   platform::PolicyRequest policy = platform::PolicyRequest::kAuto;
-  std::uint32_t max_edges = 0;  // 0: 400 per millisecond of wall-clock budget
+  std::uint32_t max_edges = 0;  // 0: 400 per millisecond of wall-clock budget (lockstep: 4 cycles)
+  // Lockstep (the vehicle's states ask for it: a simulator that waits for each plan): one cycle
+  // per state, growing this many edges whatever the time, so that a seed reproduces a run.
+  // 1000 is about what 2.5 ms grow on the machines measured here.
+  std::uint32_t lockstep_edges = 1000;
   std::uint32_t max_map_cells = 1U << 22;
   std::uint64_t seed = 1;
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};

@@ -52,6 +52,10 @@ class VehicleLink {
   // Sleeps until a plan or a map request arrives, or `timeout` passes (whichever first).
   void wait_for_plan_or_request(std::chrono::nanoseconds timeout);
   std::optional<grip_msg_PlannerStatus> take_status();
+  // The newest status, once one of cycle `min_cycle` or later has arrived or `timeout` passed
+  // (then the newest older one, if any). Lockstep: the status that goes with a plan.
+  std::optional<grip_msg_PlannerStatus> wait_for_status(std::uint64_t min_cycle,
+                                                        std::chrono::nanoseconds timeout);
 
   OccupancyGrid& map() noexcept { return sender_.map(); }
   const MapSender& map_sender() const noexcept { return sender_; }
@@ -70,7 +74,8 @@ class VehicleLink {
               platform::dds::Writer<grip_msg_Goal> goals,
               platform::dds::Reader<grip_msg_MapRequest> requests,
               platform::dds::Reader<grip_msg_Plan> plans,
-              platform::dds::Reader<grip_msg_PlannerStatus> status, platform::dds::WaitSet waitset);
+              platform::dds::Reader<grip_msg_PlannerStatus> status, platform::dds::WaitSet waitset,
+              platform::dds::WaitSet status_waitset);
   void send(const grip_msg_MapUpdate& update);
 
   VehicleKind kind_;
@@ -81,7 +86,8 @@ class VehicleLink {
   platform::dds::Reader<grip_msg_MapRequest> requests_;
   platform::dds::Reader<grip_msg_Plan> plans_;
   platform::dds::Reader<grip_msg_PlannerStatus> status_;
-  platform::dds::WaitSet waitset_;
+  platform::dds::WaitSet waitset_;         // plans and map requests
+  platform::dds::WaitSet status_waitset_;  // the planner's status
   MapSender sender_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_Plan, 4>> plan_buffer_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_MapRequest, 8>> request_buffer_;
