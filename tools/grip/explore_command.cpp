@@ -124,6 +124,17 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
   j["safety"] = !o.no_safety;
   j["start"] = {world.start.x_m, world.start.y_m, world.start.theta_rad};
   j["max_speed_m_s"] = r.max_speed_m_s;
+  if (!r.trajectory.empty()) j["end"] = {r.trajectory.back()[0], r.trajectory.back()[1]};
+  if (r.last_status) {
+    // Where the planner was heading when the run ended (a stuck run: the frontier it could not
+    // reach).
+    const grip_msg_PlannerStatus& s = *r.last_status;
+    j["planner"] = {{"exploring", s.exploring},
+                    {"exploration_complete", s.exploration_complete},
+                    {"frontier_groups", s.frontier_groups},
+                    {"target", {s.target_x_m, s.target_y_m}},
+                    {"tree_edges", s.tree_edges}};
+  }
   // The velocity profile of the paper's Fig. 9, one sample per simulation tick.
   nlohmann::json profile = nlohmann::json::array();
   for (const auto& p : r.speed_profile) profile.push_back({p[0], p[1]});
@@ -142,6 +153,11 @@ Status draw_run(const World& world, const sim::SimRunReport& r, const std::strin
   canvas->draw_polyline(line, 0.85, 0.15, 0.1, 2.0);
   for (const auto& c : r.collision_events) canvas->draw_marker({c.x_m, c.y_m}, 6.0, 1.0, 0.0, 1.0);
   canvas->draw_marker({world.start.x_m, world.start.y_m}, 5.0, 0.95, 0.6, 0.0);
+  if (!line.empty()) canvas->draw_marker(line.back(), 5.0, 0.1, 0.3, 0.9);  // where it ended
+  if (r.last_status && r.last_status->exploring && !r.last_status->exploration_complete) {
+    canvas->draw_marker({r.last_status->target_x_m, r.last_status->target_y_m}, 4.0, 0.1, 0.7,
+                        0.2);  // the frontier it was heading for
+  }
   std::ostringstream title;
   title << world.name << ", " << r.result << ", coverage " << std::fixed << std::setprecision(3)
         << r.coverage << ", collisions " << r.collisions << ", " << std::setprecision(0)
