@@ -53,6 +53,20 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
   EXPECT_GT(r.at("coverage").get<double>(), 0.2);
   EXPECT_LE(r.at("coverage").get<double>(), 1.0);
   EXPECT_GT(r.at("speed_profile").size(), 100U);
+  // How much of the time the vehicle went faster than 50% and 80% of its maximum, per sample.
+  const double max_speed = r.at("max_speed_m_s").get<double>();
+  ASSERT_GT(max_speed, 0.0);
+  std::size_t above_50 = 0;
+  std::size_t above_80 = 0;
+  for (const auto& p : r.at("speed_profile")) {
+    above_50 += p.at(1).get<double>() > 0.5 * max_speed ? 1U : 0U;
+    above_80 += p.at(1).get<double>() > 0.8 * max_speed ? 1U : 0U;
+  }
+  const auto n = static_cast<double>(r.at("speed_profile").size());
+  EXPECT_DOUBLE_EQ(r.at("time_fraction_above_50pct_max_speed").get<double>(),
+                   static_cast<double>(above_50) / n);
+  EXPECT_DOUBLE_EQ(r.at("time_fraction_above_80pct_max_speed").get<double>(),
+                   static_cast<double>(above_80) / n);
 }
 
 TEST(ExploreCommand, ExploresASmallMapWithoutCollisionAndWritesReportAndPicture) {

@@ -28,6 +28,7 @@
 #include "grip/sim/start_pose.hpp"
 #include "grip/vehicles/default_vehicle.hpp"
 #include "render.hpp"
+#include "speed_profile.hpp"
 
 namespace grip::tools {
 
@@ -135,10 +136,16 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
                     {"target", {s.target_x_m, s.target_y_m}},
                     {"tree_edges", s.tree_edges}};
   }
-  // The velocity profile of the paper's Fig. 9, one sample per simulation tick.
+  // The velocity profile of the paper's Fig. 9, one sample per simulation tick, and how much of
+  // the time the vehicle went near its maximum speed (`grip render --speed-profile` draws it).
   nlohmann::json profile = nlohmann::json::array();
   for (const auto& p : r.speed_profile) profile.push_back({p[0], p[1]});
   j["speed_profile"] = profile;
+  if (r.max_speed_m_s > 0.0) {
+    const SpeedProfileSummary speed = summarize_speed_profile(r.speed_profile, r.max_speed_m_s);
+    j["time_fraction_above_50pct_max_speed"] = speed.fraction_above_50;
+    j["time_fraction_above_80pct_max_speed"] = speed.fraction_above_80;
+  }
   return j;
 }
 

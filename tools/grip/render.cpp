@@ -1,5 +1,7 @@
 #include "render.hpp"
 
+#include "figure.hpp"
+
 namespace grip::tools {
 
 Result<MapCanvas> MapCanvas::create(const OccupancyGrid& grid, int pixels_per_cell) {
@@ -98,13 +100,7 @@ void MapCanvas::draw_label(const std::string& text, double x_px, double y_px, do
 }
 
 Status MapCanvas::write_png(const std::string& path) {
-  cairo_surface_flush(surface_.get());
-  const cairo_status_t status = cairo_surface_write_to_png(surface_.get(), path.c_str());
-  if (status != CAIRO_STATUS_SUCCESS) {
-    return Error{ErrorCode::kIo,
-                 "cannot write PNG '" + path + "': " + cairo_status_to_string(status)};
-  }
-  return Ok{};
+  return grip::tools::write_png(surface_.get(), path);
 }
 
 }  // namespace grip::tools

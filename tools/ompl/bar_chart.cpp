@@ -6,12 +6,16 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <numbers>
+
+#include "figure.hpp"
 
 namespace grip::ompl_bridge {
 
 namespace {
+
+using tools::draw_text;
+using tools::Rgb;
 
 constexpr double kWidth = 1400.0;
 constexpr double kPanelHeight = 420.0;
@@ -21,9 +25,6 @@ constexpr double kRight = 20.0;
 constexpr double kTop = 40.0;     // in a panel: title
 constexpr double kBottom = 60.0;  // in a panel: group labels
 
-struct Rgb {
-  double r, g, b;
-};
 // GRIP first and dark; the OMPL planners in distinct lighter colours.
 constexpr std::array<Rgb, 8> kColours{{{0.80, 0.15, 0.10},
                                        {0.20, 0.40, 0.75},
@@ -34,27 +35,13 @@ constexpr std::array<Rgb, 8> kColours{{{0.80, 0.15, 0.10},
                                        {0.10, 0.65, 0.70},
                                        {0.75, 0.55, 0.40}}};
 
-void text(cairo_t* cr, const std::string& s, double x, double y, double size, bool bold,
-          double align = 0.0, double angle = 0.0) {
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
-                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
-  cairo_text_extents_t ext;
-  cairo_text_extents(cr, s.c_str(), &ext);
-  cairo_save(cr);
-  cairo_translate(cr, x, y);
-  cairo_rotate(cr, angle);
-  cairo_move_to(cr, -align * ext.width, 0.0);
-  cairo_show_text(cr, s.c_str());
-  cairo_restore(cr);
-}
-
 void draw_panel(cairo_t* cr, const std::vector<std::string>& series, const BarPanel& panel,
                 double y0) {
-  const double plot_top = y0 + kTop;
-  const double plot_bottom = y0 + kPanelHeight - kBottom;
-  const double plot_h = plot_bottom - plot_top;
-  const double plot_w = kWidth - kLeft - kRight;
+  const tools::PlotArea area{kLeft, y0 + kTop, kWidth - kLeft - kRight,
+                             kPanelHeight - kTop - kBottom};
+  const double plot_bottom = area.bottom_px();
+  const double plot_h = area.height_px;
+  const double plot_w = area.width_px;
 
   // Log axis from the decade below the smallest value to y_max.
   double lo = panel.y_max;
@@ -72,7 +59,7 @@ void draw_panel(cairo_t* cr, const std::vector<std::string>& series, const BarPa
   };
 
   cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
-  text(cr, panel.title, kLeft, y0 + 24.0, 16.0, true);
+  draw_text(cr, panel.title, kLeft, y0 + 24.0, 16.0, true);
   // Grid lines at the decades, the axis label.
   cairo_set_line_width(cr, 1.0);
   for (double d = std::ceil(log_lo); d <= std::log10(panel.y_max) + 1e-9; d += 1.0) {
@@ -84,19 +71,12 @@ void draw_panel(cairo_t* cr, const std::vector<std::string>& series, const BarPa
     cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
     char buf[32];
     std::snprintf(buf, sizeof buf, "1e%d", static_cast<int>(d));
-    text(cr, buf, kLeft - 8.0, y + 4.0, 11.0, false, 1.0);
+    draw_text(cr, buf, kLeft - 8.0, y + 4.0, 11.0, false, 1.0);
   }
   // The cap (e.g. the time limit) as a dashed line.
   const double y_cap = y_of(panel.y_max);
-  const std::array<double, 2> dash{6.0, 4.0};
-  cairo_set_dash(cr, dash.data(), 2, 0.0);
-  cairo_set_source_rgb(cr, 0.5, 0.1, 0.1);
-  cairo_move_to(cr, kLeft, y_cap);
-  cairo_line_to(cr, kLeft + plot_w, y_cap);
-  cairo_stroke(cr);
-  cairo_set_dash(cr, nullptr, 0, 0.0);
-  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-  text(cr, panel.y_label, 18.0, plot_top + plot_h / 2.0, 12.0, false, 0.5, -std::numbers::pi / 2.0);
+  tools::draw_dashed_hline(cr, area, y_cap, {0.5, 0.1, 0.1});
+  tools::draw_y_label(cr, area, panel.y_label);
 
   const double group_w =
       plot_w / static_cast<double>(std::max<std::size_t>(panel.groups.size(), 1));
@@ -133,19 +113,14 @@ void draw_panel(cairo_t* cr, const std::vector<std::string>& series, const BarPa
       }
       if (si < g.notes.size()) {
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        text(cr, g.notes[si], x + bar_w / 2.0 + 3.0, top - 4.0, 9.0, false, 0.0,
-             -std::numbers::pi / 2.0);
+        draw_text(cr, g.notes[si], x + bar_w / 2.0 + 3.0, top - 4.0, 9.0, false, 0.0,
+                  -std::numbers::pi / 2.0);
       }
     }
     cairo_set_source_rgb(cr, 0.05, 0.05, 0.05);
-    text(cr, g.label, gx + group_w * 0.4, plot_bottom + 18.0, 12.0, false, 0.5);
+    draw_text(cr, g.label, gx + group_w * 0.4, plot_bottom + 18.0, 12.0, false, 0.5);
   }
-  cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
-  cairo_set_line_width(cr, 1.2);
-  cairo_move_to(cr, kLeft, plot_top);
-  cairo_line_to(cr, kLeft, plot_bottom);
-  cairo_line_to(cr, kLeft + plot_w, plot_bottom);
-  cairo_stroke(cr);
+  tools::draw_axes(cr, area);
 }
 
 }  // namespace
@@ -155,16 +130,9 @@ Status write_bar_chart_png(const std::vector<std::string>& series,
   if (panels.empty()) return invalid_argument("bar chart: no panels");
   const int w = static_cast<int>(kWidth);
   const int h = static_cast<int>(kLegendHeight + kPanelHeight * static_cast<double>(panels.size()));
-  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-      cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h), &cairo_surface_destroy);
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-    return Error{ErrorCode::kIo, "bar chart: cannot create the image"};
-  }
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> owner(cairo_create(surface.get()),
-                                                           &cairo_destroy);
-  cairo_t* cr = owner.get();
-  cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
-  cairo_paint(cr);
+  auto figure = tools::Figure::create(w, h);
+  if (!figure) return Error{figure.error().code, "bar chart: " + figure.error().message};
+  cairo_t* cr = figure->cr();
 
   // Legend.
   double x = kLeft;
@@ -174,19 +142,13 @@ Status write_bar_chart_png(const std::vector<std::string>& series,
     cairo_rectangle(cr, x, 14.0, 16.0, 16.0);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
-    text(cr, series[si], x + 22.0, 27.0, 13.0, si == 0);
+    draw_text(cr, series[si], x + 22.0, 27.0, 13.0, si == 0);
     x += 130.0;
   }
   for (std::size_t p = 0; p < panels.size(); ++p) {
     draw_panel(cr, series, panels[p], kLegendHeight + kPanelHeight * static_cast<double>(p));
   }
-  cairo_surface_flush(surface.get());
-  const cairo_status_t status = cairo_surface_write_to_png(surface.get(), path.c_str());
-  if (status != CAIRO_STATUS_SUCCESS) {
-    return Error{ErrorCode::kIo,
-                 "cannot write PNG '" + path + "': " + cairo_status_to_string(status)};
-  }
-  return Ok{};
+  return figure->write_png(path);
 }
 
 }  // namespace grip::ompl_bridge
