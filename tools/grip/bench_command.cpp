@@ -279,6 +279,7 @@ void register_bench_command(CLI::App& app) {
     if (const int rc = run_bench_paper(*o); rc != 0) throw CLI::RuntimeError(rc);
   });
   register_bench_dds_command(*bench);
+  register_bench_explore_command(*bench);
   register_bench_ompl_command(*bench);
 }
 

@@ -10,12 +10,6 @@
 // configuration; ddsperf reports half the round trip, a one-way figure like ours.
 // A benchmark: it measures and prints, it asserts nothing.
 
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <fcntl.h>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -29,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "child.hpp"
 #include "commands.hpp"
 #include "grip/platform/clock.hpp"
 #include "grip/platform/dds/participant.hpp"
@@ -36,7 +31,6 @@
 #include "grip/rt/latency_histogram.hpp"
 #include "grip/scenes/scenes.hpp"
 
-extern char** environ;
 
 namespace grip::tools {
 
@@ -47,53 +41,6 @@ struct BenchDdsOptions {
   unsigned domain = 90;  // ddsperf uses domain + 1
   std::string json;
   std::string planner_report;  // the planner child's own report (allocations, misses)
-};
-
-// A child process, killed and reaped when it goes out of scope.
-class Child {
- public:
-  static Result<Child> spawn(std::vector<std::string> args,
-                             const std::vector<std::string>& env_extra,
-                             const std::string& stdout_path) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    std::vector<std::string> env_strings(env_extra);
-    for (char** e = environ; *e != nullptr; ++e) env_strings.emplace_back(*e);
-    std::vector<char*> envp;
-    for (auto& e : env_strings) envp.push_back(e.data());
-    envp.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    if (!stdout_path.empty()) {
-      posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_path.c_str(),
-                                       O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    }
-    pid_t pid = 0;
-    const int rc = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) return Error{ErrorCode::kIo, "cannot start " + args[0] + ": " + std::strerror(rc)};
-    return Child(pid);
-  }
-  Child(Child&& other) noexcept : pid_(other.pid_) { other.pid_ = 0; }
-  Child& operator=(Child&&) = delete;
-  ~Child() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-  }
-  // Waits for the child to exit by itself; its exit status.
-  int wait() {
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = 0;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  }
-
- private:
-  explicit Child(pid_t pid) : pid_(pid) {}
-  pid_t pid_;
 };
 
 nlohmann::json summary_us(const rt::LatencyHistogram& h) {
@@ -119,10 +66,9 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
   config.kind = VehicleKind::kDdVelocity;
   auto link = rt::dds::VehicleLink::create(config, scene.grid);
   if (!link) return link.error();
-  char self[4096] = {};
-  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (n <= 0) return Error{ErrorCode::kIo, "cannot find the grip executable (/proc/self/exe)"};
-  std::vector<std::string> args{std::string(self, static_cast<std::size_t>(n)),
+  auto self = self_executable();
+  if (!self) return self.error();
+  std::vector<std::string> args{*self,
                                 "planner",
                                 "--robot",
                                 "dd-vel",
