@@ -149,18 +149,28 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
   return j;
 }
 
-// Fig. 1 / Fig. 8 of the paper: sensed free, obstacles, unknown, the trajectory, collisions.
-Status draw_run(const World& world, const sim::SimRunReport& r, const std::string& path) {
+// Fig. 1 / Fig. 8 of the paper: sensed free, obstacles, unknown, the trajectory, collisions,
+// and, when the planner ran in this process, its last tree and the plan it had selected.
+Status draw_run(const World& world, const sim::SimRunReport& r,
+                const rt::dds::PlannerTreePicture& tree, const std::string& path) {
   auto canvas = MapCanvas::create(world.truth, 2);
   if (!canvas) return canvas.error();
   canvas->draw_grid(*r.known);
-  std::vector<Point> line;
-  line.reserve(r.trajectory.size());
-  for (const auto& p : r.trajectory) line.push_back({p[0], p[1]});
-  canvas->draw_polyline(line, 0.85, 0.15, 0.1, 2.0);
+  const auto draw = [&](const std::vector<std::array<double, 2>>& points, double red, double green,
+                        double blue, double width_px, double alpha) {
+    std::vector<Point> line;
+    line.reserve(points.size());
+    for (const auto& p : points) line.push_back({p[0], p[1]});
+    canvas->draw_polyline(line, red, green, blue, width_px, alpha);
+  };
+  for (const auto& edge : tree.edges) draw(edge, 0.2, 0.35, 0.85, 1.0, 0.45);
+  draw(r.trajectory, 0.85, 0.15, 0.1, 2.0, 1.0);
+  draw(tree.plan, 0.1, 0.65, 0.2, 3.0, 1.0);
   for (const auto& c : r.collision_events) canvas->draw_marker({c.x_m, c.y_m}, 6.0, 1.0, 0.0, 1.0);
   canvas->draw_marker({world.start.x_m, world.start.y_m}, 5.0, 0.95, 0.6, 0.0);
-  if (!line.empty()) canvas->draw_marker(line.back(), 5.0, 0.1, 0.3, 0.9);  // where it ended
+  if (!r.trajectory.empty()) {  // where it ended
+    canvas->draw_marker({r.trajectory.back()[0], r.trajectory.back()[1]}, 5.0, 0.1, 0.3, 0.9);
+  }
   if (r.last_status && r.last_status->exploring && !r.last_status->exploration_complete) {
     canvas->draw_marker({r.last_status->target_x_m, r.last_status->target_y_m}, 4.0, 0.1, 0.7,
                         0.2);  // the frontier it was heading for
@@ -174,7 +184,7 @@ Status draw_run(const World& world, const sim::SimRunReport& r, const std::strin
 }
 
 int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRunReport>& run,
-           const char* command) {
+           const rt::dds::PlannerTreePicture& tree, const char* command) {
   if (!run) {
     std::cerr << command << ": " << run.error().message << "\n";
     return 1;
@@ -199,7 +209,7 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
     }
   }
   if (!o.image.empty()) {
-    if (Status s = draw_run(world, r, o.image); !s) {
+    if (Status s = draw_run(world, r, tree, o.image); !s) {
       std::cerr << command << ": " << s.error().message << "\n";
       return 1;
     }
@@ -299,7 +309,9 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
       std::cerr << command << ": planner: " << planner_result->error().message << "\n";
     }
   }
-  return finish(o, *world, run, command);
+  const rt::dds::PlannerTreePicture tree =
+      planner ? planner->last_tree() : rt::dds::PlannerTreePicture{};
+  return finish(o, *world, run, tree, command);
 }
 
 void add_common_options(CLI::App* cmd, ExploreOptions& o) {

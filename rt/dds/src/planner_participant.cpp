@@ -164,6 +164,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
                                                             const V& vehicle);
   ~PlannerParticipantFor() override;
   Result<PlannerParticipantReport> run() override;
+  PlannerTreePicture last_tree() const override;
 
  private:
   struct Entities {
@@ -1028,6 +1029,24 @@ PlannerParticipantReport PlannerParticipantFor<V>::final_report(
   report.resyncs = resyncs_;
   report.map_checksum = map_checksum(*grid_);
   return report;
+}
+
+template <VehicleModel V>
+PlannerTreePicture PlannerParticipantFor<V>::last_tree() const {
+  PlannerTreePicture picture;
+  if (!cycle_) return picture;
+  const Planner<V>& planner = cycle_->planner();
+  const auto& tree = planner.tree();
+  planner.visit_edges([&](EdgeHandle, const Edge& edge) {
+    auto& line = picture.edges.emplace_back();
+    for (int k = edge.first; k <= edge.last; ++k) {
+      const auto& q = tree.state(edge.trajectory, static_cast<std::uint32_t>(k));
+      line.push_back({state_x(q), state_y(q)});
+    }
+  });
+  planner.visit_path(cycle_->committed(),
+                     [&](const State& q) { picture.plan.push_back({state_x(q), state_y(q)}); });
+  return picture;
 }
 
 template <VehicleModel V>

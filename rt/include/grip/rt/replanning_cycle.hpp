@@ -97,6 +97,8 @@ class ReplanningCycle {
   // The state the plan starts from, and the one it reaches after T (the next root).
   const State& plan_start() const noexcept;
   const Planner<V>& planner() const noexcept { return planner_; }
+  // The end of the committed plan in the tree (empty: braking).
+  TreeState committed() const noexcept { return committed_; }
   std::uint32_t cycle_steps() const noexcept { return cycle_steps_; }
 
  private:

@@ -23,12 +23,14 @@
 // planning on its last map and state, and says so in its status; the controller, for its part,
 // falls back to the contingency maneuver that ends every plan.
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "grip/common/result.hpp"
 #include "grip/platform/dds/participant.hpp"
@@ -98,6 +100,12 @@ struct PlannerParticipantReport {
   LatencyHistogram compute;
 };
 
+// The planner's last tree and committed plan in the plane, for pictures.
+struct PlannerTreePicture {
+  std::vector<std::vector<std::array<double, 2>>> edges;  // each edge's states (x, y) [m]
+  std::vector<std::array<double, 2>> plan;                // from the plan's start to its end
+};
+
 class PlannerParticipant {
  public:
   // Creates the participant, its readers and writers, and starts the receive thread.
@@ -107,6 +115,8 @@ class PlannerParticipant {
   // Start-up, then planning until duration_s passes or request_stop(). An error when start-up
   // fails (timeout: names what is missing) or the planning thread cannot start.
   virtual Result<PlannerParticipantReport> run() = 0;
+  // After run() has returned (allocates): empty when planning never started.
+  virtual PlannerTreePicture last_tree() const = 0;
   // Any thread (a signal handler's forwarding thread included).
   void request_stop() noexcept { stop_.store(true, std::memory_order_release); }
 
