@@ -126,7 +126,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
 
   // Folds the state at (x, y) into the vector d and its sum. Most states see nothing (one mask
   // read); a seen target costs a squared distance, and a square root only when it improves.
-  const auto fold = [&](float* d, double& d_sum, double x, double y) {
+  const auto fold = [&](float* d, double& d_sum, std::uint32_t& unseen, double x, double y) {
     const double u = (x - origin_x_m_) * inv_resolution;
     const double v = (y - origin_y_m_) * inv_resolution;
     if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) return;
@@ -140,20 +140,26 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
       const double old = static_cast<double>(d[i]);
       if (dx * dx + dy * dy >= old * old) continue;
       const auto distance = static_cast<float>(std::sqrt(dx * dx + dy * dy));
+      if (!(d[i] < d_max)) --unseen;  // first seen on this trajectory
       d_sum += static_cast<double>(distance) - old;
       d[i] = distance;
     }
   };
   // One exponential per state serves both candidates: w = d exp(lambda l).
   const auto offer = [&](EdgeHandle e, std::uint16_t k, double x, double y, double d_sum,
-                         double length) {
+                         std::uint32_t unseen, double length) {
     if (tree.step_of(e, k) < min_step) return;
     const double growth = std::exp(lambda * length);
-    const double by_sight_weight = d_sum * growth;
-    if (by_sight_weight < by_sight.weight) {
-      by_sight = PathChoice{TreeState{e, k}, d_sum, length, by_sight_weight, true};
-    }
     const double rho_end = rho.distance_m(x, y);
+    // A cell tr does not see lies d_max beyond the sensing disk of wherever tr ends: d_max plus
+    // rho_A* from its end to F. With d_max alone, a trajectory seeing a few cells would lose to
+    // standing still (its length costs more than the few cells gain) and the robot stalls
+    // where the frontier is barely in sight; rho makes every step toward it count.
+    const double d_all = d_sum + static_cast<double>(unseen) * rho_end;
+    const double by_sight_weight = d_all * growth;
+    if (by_sight_weight < by_sight.weight) {
+      by_sight = PathChoice{TreeState{e, k}, d_all, length, by_sight_weight, true};
+    }
     const double by_rho_weight = rho_end * growth;
     if (by_rho_weight < by_rho.weight) {
       by_rho = PathChoice{TreeState{e, k}, rho_end, length, by_rho_weight, false};
@@ -179,7 +185,11 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
       length = length_[edge.parent];
     }
     double d_sum = 0.0;
-    for (std::uint32_t i = 0; i < targets; ++i) d_sum += static_cast<double>(d[i]);
+    std::uint32_t unseen = 0;
+    for (std::uint32_t i = 0; i < targets; ++i) {
+      d_sum += static_cast<double>(d[i]);
+      unseen += d[i] < d_max ? 0U : 1U;
+    }
     // The root edge holds one state; any other edge's first state is its parent's last.
     const auto& first = tree.edge_state(e, edge.first);
     double px = state_x(first);
@@ -192,8 +202,8 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
       length += std::sqrt((x - px) * (x - px) + (y - py) * (y - py));
       px = x;
       py = y;
-      fold(d, d_sum, x, y);
-      offer(e, static_cast<std::uint16_t>(k), x, y, d_sum, length);
+      fold(d, d_sum, unseen, x, y);
+      offer(e, static_cast<std::uint16_t>(k), x, y, d_sum, unseen, length);
       if (k == edge.last) break;
       k = std::min<int>(k + stride, edge.last);
     }

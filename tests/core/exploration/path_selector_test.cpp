@@ -85,9 +85,11 @@ class PathSelectorTest : public ::testing::Test {
         d[i] = std::min(d[i], std::hypot(q[0] - cx, q[1] - cy));
       }
     });
+    // A cell the trajectory does not see: d_max beyond rho from its end.
+    const double rho_end = planner->rho_field().distance_m(px, py);
     r.d_m = 0.0;
-    for (const double v : d) r.d_m += v;
-    if (!by_sight) r.d_m = planner->rho_field().distance_m(px, py);
+    for (const double v : d) r.d_m += v < config.sensing_radius_m ? v : v + rho_end;
+    if (!by_sight) r.d_m = rho_end;
     r.weight = r.d_m * std::exp(config.length_weight_per_m * r.length_m);
     return r;
   }
@@ -204,6 +206,40 @@ TEST_F(PathSelectorTest, NoTrajectoryLastingTMeansNoChoice) {
   for_each_state([&](TreeState, std::uint32_t step) { deepest = std::max(deepest, step); });
   EXPECT_NE(selector->select(*planner, deepest).state.edge, kNoHandle);
   EXPECT_EQ(selector->select(*planner, deepest + 1).state.edge, kNoHandle);
+}
+
+// A corridor 16 m long whose far end is unknown: a tree that has just come within sensing range
+// of the frontier sees only the few cells straight ahead, at the edge of the range. Standing
+// still must not be the best choice then (with d_max alone for an unseen cell it was: the
+// trajectory's length cost more than the few cells gained, and the robot stalled).
+TEST(PathSelectorFromAfar, SeeingAFewFrontierCellsStillMovesTowardThem) {
+  OccupancyGrid grid = OccupancyGrid::create(160, 30, 0.1, 0.0, 0.0, Cell::kObstacle).value();
+  grid.fill_rect(0.3, 0.3, 15.7, 2.7, Cell::kFree);
+  grid.fill_rect(14.0, 0.3, 15.7, 2.7, Cell::kUnknown);
+  const DdVelocity robot = DdVelocity::create({}).value();
+  PlannerConfig pc;
+  pc.max_edges = 4000;
+  pc.max_trajectories = 2000;
+  pc.stop_at_goal = false;
+  auto planner = DdVelocityPlanner::create(robot, grid, pc).value();
+  auto frontiers = FrontierMap::create(160, 30, 0.1, FrontierConfig{}).value();
+  PathSelectionConfig config;
+  auto selector = PathSelector::create(160, 30, 0.1, pc.max_edges, config).value();
+  ASSERT_EQ(frontiers.update(grid, planner.checker().clearance(), 1.0, 1.5),
+            ExplorationStatus::kTarget);
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(1.0, 1.5, 0.0),
+                                  GoalCells{frontiers.approach_cells()}));
+  selector.set_target(grid, frontiers.target_cells());
+  // Grow until the first tree state sees a target cell.
+  PathChoice choice;
+  for (std::uint64_t edges = 20; edges <= 4000 && !choice.sees_target; edges += 20) {
+    (void)planner.solve([&] { return planner.stats().edges_added >= edges; });
+    choice = selector.select(planner, 20);
+  }
+  ASSERT_TRUE(choice.sees_target) << "the tree never came within sight of the frontier";
+  const auto& end = planner.tree().edge_state(choice.state.edge, choice.state.index);
+  EXPECT_GT(end[0], 8.0) << "chose a trajectory of " << choice.length_m << " m ending at ("
+                         << end[0] << ", " << end[1] << ")";
 }
 
 TEST(PathSelectionConfigTest, BadValuesAreRefusedByName) {

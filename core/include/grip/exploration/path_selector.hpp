@@ -1,10 +1,15 @@
 #pragma once
 // Path selection for exploration (GRIP.md section 3): every root-to-state trajectory tr of the
 // planner's tree is a candidate; with d_max the sensing radius and c the target cells,
-//   d(tr, c) = rho_A*(q, c) for the state q of tr nearest to c among those that see c, else d_max
+//   d(tr, c) = rho_A*(q, c) for the state q of tr nearest to c among those that see c, else
+//              d_max + rho_A*(end of tr, F)
 //   d(tr)    = sum over c of d(tr, c)
 //   w(tr)    = d(tr) * exp(lambda * l(tr)),  l(tr) the length of tr,
-// and the selector returns the minimum-weight state at least T (min_step) from the root. When no
+// and the selector returns the minimum-weight state at least T (min_step) from the root. The
+// paper has d_max alone for an unseen cell; then a trajectory that sees a few cells loses to
+// one that barely moves (its length costs more than the cells gain), and the robot stalls where
+// the frontier is just in sight. Adding rho from the trajectory's end rewards each step toward
+// the cells it does not see yet; a seen cell still counts less than any unseen one. When no
 // state of the tree sees any target cell, d(tr) is instead rho at the end of tr: the planner's
 // rho_A* to its target set F (in exploration, the target group's approach cells,
 // exploration/frontier.hpp, within approach range of the frontier).
