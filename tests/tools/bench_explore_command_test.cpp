@@ -1,0 +1,63 @@
+// `grip bench explore` runs its matrix for real (here: one small map, one robot, two seeds, in
+// lockstep): every run leaves its report, the table counts them, and bad options are refused.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "grip_command.hpp"
+
+namespace {
+
+using grip::testing::CommandRun;
+
+std::string write_room_map() {
+  const std::string path = ::testing::TempDir() + "grip-bench-explore-room.map";
+  std::ofstream out(path);
+  out << "type octile\nheight 10\nwidth 10\nmap\n"
+      << "@@@@@@@@@@\n@........@\n@........@\n@...@@...@\n@...@@...@\n"
+      << "@........@\n@.@@@@@..@\n@........@\n@........@\n@@@@@@@@@@\n";
+  return path;
+}
+
+TEST(BenchExploreCommand, RunsEveryWorldRobotAndSeedAndTabulatesThem) {
+  const std::string out_dir = ::testing::TempDir() + "grip-bench-explore";
+  const std::string json = ::testing::TempDir() + "grip-bench-explore.json";
+  std::filesystem::remove_all(out_dir);
+  const CommandRun r = grip::testing::run_grip(
+      "bench explore --scenes '' --map " + write_room_map() +
+      " --robots dd-vel --seeds 2 --lockstep --max-sim-time 300 --jobs 2 --domain 85 --out " +
+      out_dir + " --json " + json);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j.at("runs").size(), 2U) << r.output;
+  for (const auto& run : j.at("runs")) {
+    EXPECT_EQ(run.at("result"), "complete") << run.dump();
+    EXPECT_EQ(run.at("collisions").get<int>(), 0) << run.dump();
+    EXPECT_TRUE(std::filesystem::exists(run.at("report").get<std::string>())) << run.dump();
+  }
+  EXPECT_NE(j.at("runs")[0].at("seed"), j.at("runs")[1].at("seed"));
+  ASSERT_EQ(j.at("table").size(), 1U);
+  const auto& row = j.at("table")[0];
+  EXPECT_EQ(row.at("runs").get<int>(), 2);
+  EXPECT_EQ(row.at("complete").get<int>(), 2);
+  EXPECT_TRUE(row.at("target_met").get<bool>());
+  EXPECT_NE(r.output.find("target (every run: 0 collisions, coverage >= 0.97): met"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(BenchExploreCommand, BadOptionsAreRefusedNamingWhatIsWrong) {
+  CommandRun r = grip::testing::run_grip("bench explore --robots bicycle");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("bicycle"), std::string::npos) << r.output;
+  r = grip::testing::run_grip("bench explore --map /nonexistent/grip.map --scenes ''");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("/nonexistent/grip.map"), std::string::npos) << r.output;
+}
+
+}  // namespace
