@@ -3,14 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <iterator>
+#include <limits>
 #include <thread>
 
 #include "grip/platform/clock.hpp"
 #include "grip/rt/dds/vehicle_link.hpp"
+#include "grip/sim/coverage.hpp"
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/range_sensor.hpp"
 #include "grip/vehicles/default_vehicle.hpp"
-#include "grip/world/distance_field.hpp"
 
 namespace grip::sim {
 
@@ -18,31 +20,6 @@ namespace {
 
 // Simulated time on the wire starts here rather than at 0: a stamp of 0 reads as "never".
 constexpr std::int64_t kEpochNs = 1'000'000'000;
-
-// The free cells of the truth reachable from the start (8-connected, any width): what
-// coverage is a fraction of.
-Result<std::vector<std::uint32_t>> reachable_free_cells(const OccupancyGrid& truth, double x,
-                                                        double y) {
-  auto field = DistanceField::create(truth.width(), truth.height(), truth.resolution());
-  if (!field) return field.error();
-  int cx = 0;
-  int cy = 0;
-  if (!truth.to_cell(x, y, cx, cy)) return invalid_argument("the start is outside the map");
-  const std::uint32_t start[] = {truth.index(cx, cy)};
-  field->compute(truth, start);
-  std::vector<std::uint32_t> cells;
-  for (std::uint32_t c = 0; c < truth.cell_count(); ++c) {
-    if (field->reachable(c)) cells.push_back(c);
-  }
-  return cells;
-}
-
-double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>& reachable) {
-  std::size_t sensed = 0;
-  for (const std::uint32_t c : reachable) sensed += known.at(c) != Cell::kUnknown ? 1U : 0U;
-  return reachable.empty() ? 1.0
-                           : static_cast<double>(sensed) / static_cast<double>(reachable.size());
-}
 
 template <VehicleModel V>
 Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
@@ -53,7 +30,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     return invalid_argument("time scale must be in (0, 1000] (got " +
                             std::to_string(config.time_scale) + ")");
   }
-  auto reachable = reachable_free_cells(truth, config.start_x_m, config.start_y_m);
+  auto reachable =
+      reachable_free_cells(truth, config.start_x_m, config.start_y_m, vehicle.footprint());
   if (!reachable) return reachable.error();
   auto known = OccupancyGrid::create(truth.width(), truth.height(), truth.resolution(),
                                      truth.origin_x(), truth.origin_y(), Cell::kUnknown);

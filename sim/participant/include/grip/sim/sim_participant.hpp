@@ -68,7 +68,7 @@ struct SimProgress {
 struct SimRunReport {
   std::string result;     // complete, timeout, stuck, error
   std::string reason;     // for error (and a word on the others)
-  double coverage = 0.0;  // sensed fraction of the free space reachable from the start
+  double coverage = 0.0;  // sensed fraction of the free space the vehicle can reach from the start
   std::uint64_t collisions = 0;
   std::vector<SimCollision> collision_events;
   std::uint64_t cycles = 0;           // the planner's, from its status
