@@ -49,6 +49,9 @@ Status FrontierConfig::validate(double resolution_m) const {
   if (!(std::isfinite(size_cap_m) && size_cap_m >= 0.0)) {
     return bad("size_cap_m", size_cap_m, "finite and >= 0");
   }
+  if (!(std::isfinite(give_up_radius_m) && give_up_radius_m >= 0.0)) {
+    return bad("give_up_radius_m", give_up_radius_m, "finite and >= 0");
+  }
   if (min_group_cells == 0) return bad("min_group_cells", 0.0, ">= 1");
   return Ok{};
 }
@@ -79,7 +82,8 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
               static_cast<std::size_t>((height_cells + 1) / 2)),
       seeds_(field_.cell_count()),
       approach_(field_.cell_count()),
-      stamp_(field_.cell_count()) {
+      stamp_(field_.cell_count()),
+      given_up_(field_.cell_count()) {
   const int reach = static_cast<int>(std::floor(config.approach_range_m / resolution_m));
   const double reach_cells = config.approach_range_m / resolution_m;
   for (int dy = -reach; dy <= reach; ++dy) {
@@ -96,12 +100,29 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
   for (std::uint32_t c = 0; c < field_.cell_count(); ++c) {
     GRIP_ASSERT(label_.push_back(kNotFrontier));
     GRIP_ASSERT(stamp_.push_back(0));
+    GRIP_ASSERT(given_up_.push_back(0));
   }
 }
 
 std::span<const std::uint32_t> FrontierMap::group_cells(std::uint32_t group) const noexcept {
   GRIP_ASSERT(group < groups_.size());
   return cells_.span().subspan(groups_[group].first, groups_[group].size);
+}
+
+void FrontierMap::give_up(std::uint32_t group) noexcept {
+  const auto reach = static_cast<int>(std::floor(config_.give_up_radius_m / resolution_));
+  const auto reach2 = reach * reach;
+  for (const std::uint32_t c : group_cells(group)) {
+    const int cx = static_cast<int>(c % static_cast<std::uint32_t>(width_));
+    const int cy = static_cast<int>(c / static_cast<std::uint32_t>(width_));
+    for (int y = std::max(0, cy - reach); y <= std::min(height_ - 1, cy + reach); ++y) {
+      for (int x = std::max(0, cx - reach); x <= std::min(width_ - 1, cx + reach); ++x) {
+        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) > reach2) continue;
+        given_up_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                  static_cast<std::size_t>(x)] = 1;
+      }
+    }
+  }
 }
 
 std::span<const std::uint32_t> FrontierMap::target_cells() const noexcept {
@@ -129,10 +150,16 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
 
   // The target: the least score; ties go to the group found first (lowest cell index).
   double best = std::numeric_limits<double>::infinity();
+  given_up_groups_ = 0;
   for (std::uint32_t g = 0; g < groups_.size(); ++g) {
     FrontierGroup& group = groups_[g];
     measure_group(grid, group);
     if (!group.reachable() || group.size < config_.min_group_cells) continue;
+    const auto cells = group_cells(g);
+    if (std::all_of(cells.begin(), cells.end(), [&](std::uint32_t c) { return given_up_[c] != 0; })) {
+      ++given_up_groups_;
+      continue;
+    }
     const double size_m = group.size * resolution_;
     group.score_m = group.rho_m + config_.size_weight * std::min(size_m, config_.size_cap_m);
     if (group.score_m < best) {

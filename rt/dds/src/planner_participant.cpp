@@ -76,6 +76,7 @@ struct CycleStatus {
   bool exploring = false;
   bool exploration_complete = false;
   std::uint32_t frontier_groups = 0;
+  std::uint32_t frontier_groups_given_up = 0;
   double target_x_m = 0.0;
   double target_y_m = 0.0;
   std::uint64_t misses = 0;
@@ -265,6 +266,9 @@ class PlannerParticipantFor final : public PlannerParticipant {
   std::optional<PathSelector> selector_;
   double target_x_m_ = 0.0;
   double target_y_m_ = 0.0;
+  // Progress toward the frontier target: its best rho_A* and when (vehicle time) it was reached.
+  double target_best_rho_m_ = std::numeric_limits<double>::infinity();
+  std::uint64_t target_progress_ns_ = 0;
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
   double time_scale_ = 1.0;
   bool lockstep_ = false;  // from the first state: plan once per state, by edge count
@@ -663,6 +667,7 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, bool map_c
   status.exploring = exploring_;
   status.exploration_complete = explored_;
   status.frontier_groups = frontiers_ ? static_cast<std::uint32_t>(frontiers_->groups().size()) : 0;
+  status.frontier_groups_given_up = frontiers_ ? frontiers_->given_up_groups() : 0;
   status.target_x_m = target_x_m_;
   status.target_y_m = target_y_m_;
   status.misses = misses_;
@@ -715,13 +720,30 @@ void PlannerParticipantFor<V>::choose_frontier_target(bool map_changed) noexcept
     return;
   }
   explored_ = false;
-  cycle_->set_goal(GoalCells{frontiers_->approach_cells()});
-  selector_->set_target(*grid_, frontiers_->target_cells());
   const FrontierGroup& group = frontiers_->groups()[frontiers_->target()];
   if (group.nearest_cell != FrontierGroup::kNoCell) {
-    target_x_m_ = grid_->cell_center_x(grid_->cell_x(group.nearest_cell));
-    target_y_m_ = grid_->cell_center_y(grid_->cell_y(group.nearest_cell));
+    const double x = grid_->cell_center_x(grid_->cell_x(group.nearest_cell));
+    const double y = grid_->cell_center_y(grid_->cell_y(group.nearest_cell));
+    // A new target (its nearest cell moved by more than a few metres), or progress toward it.
+    if (std::hypot(x - target_x_m_, y - target_y_m_) > 3.0 ||
+        group.rho_m < target_best_rho_m_ - 0.5) {
+      target_best_rho_m_ = group.rho_m;
+      target_progress_ns_ = plan_start_ns_;
+    }
+    target_x_m_ = x;
+    target_y_m_ = y;
   }
+  // No closer for a long while: dynamics or a gap the chassis cannot pass keep the vehicle from
+  // it. Set it aside; the next cycle picks another target, or ends exploration.
+  const auto since_progress_ns = static_cast<double>(static_cast<std::int64_t>(plan_start_ns_) -
+                                                     static_cast<std::int64_t>(target_progress_ns_));
+  if (since_progress_ns > config_.frontier_give_up_s * 1e9) {
+    frontiers_->give_up(frontiers_->target());
+    target_best_rho_m_ = std::numeric_limits<double>::infinity();
+    target_progress_ns_ = plan_start_ns_;
+  }
+  cycle_->set_goal(GoalCells{frontiers_->approach_cells()});
+  selector_->set_target(*grid_, frontiers_->target_cells());
 }
 
 // ---- Publish thread ----
@@ -793,6 +815,7 @@ void PlannerParticipantFor<V>::publish_status(const CycleStatus& s) {
   msg.exploring = s.exploring;
   msg.exploration_complete = s.exploration_complete;
   msg.frontier_groups = s.frontier_groups;
+  msg.frontier_groups_given_up = s.frontier_groups_given_up;
   msg.target_x_m = s.target_x_m;
   msg.target_y_m = s.target_y_m;
   static_cast<void>(dds_.status.write(msg));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <iterator>
 #include <limits>
@@ -173,7 +174,9 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       report.result = "timeout";
     } else if (t_sim() - coverage_gained_at >= config.stuck_after_s) {
       report.result = "stuck";
-      report.reason = "no coverage gained for " + std::to_string(config.stuck_after_s) + " s";
+      char reason[64];
+      std::snprintf(reason, sizeof reason, "no coverage gained for %.0f s", config.stuck_after_s);
+      report.reason = reason;
     }
     return report.result != "error";
   };

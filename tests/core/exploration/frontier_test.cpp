@@ -202,6 +202,35 @@ TEST_F(FrontierTargetTest, GroupsBelowTheMinimumSizeAreIgnored) {
   EXPECT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
 }
 
+TEST_F(FrontierTest, AGroupGivenUpIsNoLongerATargetAndWhenOnlySuchRemainExplorationEnds) {
+  // The two groups of the first test: left (x < 3) and right (x > 4.5) of the obstacle.
+  make_grid(80, 40, Cell::kUnknown);
+  grid->fill_rect(0.0, 0.0, 8.0, 2.5, Cell::kFree);
+  grid->fill_rect(2.98, 2.32, 4.52, 2.6, Cell::kObstacle);
+  ASSERT_EQ(update(1.0, 1.0), ExplorationStatus::kTarget);
+  const std::uint32_t first = frontiers->target();
+  const bool first_is_left = grid->cell_x(frontiers->target_cells()[0]) < 30;
+  EXPECT_EQ(frontiers->given_up_groups(), 0U);
+  frontiers->give_up(first);
+  // The other group is the target now, wherever the robot stands.
+  ASSERT_EQ(update(1.0, 1.0), ExplorationStatus::kTarget);
+  EXPECT_EQ(frontiers->given_up_groups(), 1U);
+  for (const std::uint32_t c : frontiers->target_cells()) {
+    EXPECT_EQ(grid->cell_x(c) < 30, !first_is_left) << grid->cell_x(c);
+  }
+  frontiers->give_up(frontiers->target());
+  EXPECT_EQ(update(1.0, 1.0), ExplorationStatus::kComplete);
+  EXPECT_EQ(frontiers->given_up_groups(), 2U);
+  // New frontier beyond the given-up neighbourhood (1 m) is a target again.
+  grid->fill_rect(0.0, 2.5, 8.0, 3.0, Cell::kFree);  // the frontier moves up to y = 2.9
+  grid->fill_rect(2.98, 2.32, 4.52, 3.1, Cell::kObstacle);
+  EXPECT_EQ(update(1.0, 1.0), ExplorationStatus::kComplete) << "0.5 m is within the radius";
+  grid->fill_rect(0.0, 3.0, 8.0, 3.8, Cell::kFree);  // y = 3.7: beyond it
+  grid->fill_rect(2.98, 2.32, 4.52, 3.9, Cell::kObstacle);
+  EXPECT_EQ(update(1.0, 1.0), ExplorationStatus::kTarget);
+  EXPECT_EQ(frontiers->given_up_groups(), 0U);
+}
+
 TEST_F(FrontierTest, ARobotNearAWallStillReachesTheOpenSpace) {
   // 0.15 m from the wall: its own cell is not a chassis cell under 0.3 m clearance.
   make_grid(100, 60, Cell::kObstacle);
@@ -228,6 +257,11 @@ TEST(FrontierConfigTest, BadValuesAreRefusedByName) {
   config = FrontierConfig{};
   config.min_group_cells = 0;
   EXPECT_FALSE(FrontierMap::create(10, 10, 0.1, config).ok());
+  config = FrontierConfig{};
+  config.give_up_radius_m = std::nan("");
+  const auto nan_radius = FrontierMap::create(10, 10, 0.1, config);
+  ASSERT_FALSE(nan_radius.ok());
+  EXPECT_NE(nan_radius.error().message.find("give_up_radius_m"), std::string::npos);
   EXPECT_FALSE(FrontierMap::create(0, 10, 0.1, FrontierConfig{}).ok());
 }
 

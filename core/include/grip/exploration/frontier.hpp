@@ -65,9 +65,13 @@ struct FrontierConfig {
   // Groups with fewer cells are ignored (1: none is). Raise it to skip single unknown cells
   // a sensor may leave between its rays.
   std::uint32_t min_group_cells = 1;
+  // [m] give_up() sets aside the frontier cells within this distance of a group's cells: the
+  // group, and what it becomes while the map around it does not change, is no longer a target.
+  double give_up_radius_m = 1.0;
 
   // Errors name the bad value: clearance_m < 0, approach_range_m not > clearance_m + one cell
-  // diagonal, size_weight < 0, size_cap_m < 0 (or any of them not finite), min_group_cells 0.
+  // diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0 (or any of them not
+  // finite), min_group_cells 0.
   Status validate(double resolution_m) const;
 };
 
@@ -101,6 +105,13 @@ class FrontierMap {
                            double robot_x_m, double robot_y_m) noexcept;
 
   ExplorationStatus status() const noexcept { return status_; }
+  // Sets group `group` of the last update aside for good: a frontier the vehicle could not get
+  // closer to (its dynamics, a gap the wavefront passes but the chassis does not). A group all
+  // of whose cells lie within give_up_radius_m of cells given up is not a target; when only
+  // such groups remain, update() says kComplete and given_up_groups() counts them.
+  void give_up(std::uint32_t group) noexcept;
+  // Reachable groups of the last update passed over because they were given up.
+  std::uint32_t given_up_groups() const noexcept { return given_up_groups_; }
   // Every frontier cell, grouped: group g's cells are contiguous (see FrontierGroup::first), in
   // flood-fill order from the group's lowest cell index.
   std::span<const std::uint32_t> frontier_cells() const noexcept { return cells_.span(); }
@@ -148,6 +159,8 @@ class FrontierMap {
   BoundedVector<std::uint32_t> seeds_;     // the robot wavefront's start cells
   BoundedVector<std::uint32_t> approach_;  // the target's approach cells
   BoundedVector<std::uint32_t> stamp_;     // per cell: approach_ membership, by generation
+  BoundedVector<std::uint8_t> given_up_;   // per cell: 1 within give_up_radius_m of one given up
+  std::uint32_t given_up_groups_ = 0;
   std::uint32_t generation_ = 0;
   std::uint32_t target_ = kNoGroup;
   ExplorationStatus status_ = ExplorationStatus::kComplete;

@@ -44,7 +44,9 @@ struct SimRunConfig {
   double cycle_s = 0.05;         // the planner's T, for the QoS deadlines
   double sensor_radius_m = 0.0;  // 0: a tenth of the map's larger side
   double max_sim_time_s = 600.0;
-  double stuck_after_s = 120.0;  // no coverage gained for this long: stuck
+  // No coverage gained for this long: stuck. Long enough for a slow vehicle to cross a maze to
+  // the last frontier; a planner that makes no progress gives its target up sooner (60 s).
+  double stuck_after_s = 300.0;
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
   std::chrono::nanoseconds planner_wait{std::chrono::seconds(30)};  // for the first plan
 };

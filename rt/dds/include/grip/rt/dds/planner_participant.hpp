@@ -66,6 +66,9 @@ struct PlannerParticipantConfig {
   bool explore_without_goal = true;
   std::chrono::nanoseconds goal_grace{std::chrono::seconds(1)};
   double sensing_radius_m = 0.0;  // d_max of the path weight; 0: a tenth of the map's width
+  // A frontier target the vehicle gets no closer to (by rho_A*, 0.5 m) for this long, in
+  // vehicle time, is given up (FrontierMap::give_up) and the next one chosen.
+  double frontier_give_up_s = 60.0;
   bool no_safety = false;  // the paper's ablation: no contingency check (plans may end unsafe)
   bool lock_memory = true;
   // Called about every 250 ms from run()'s thread with a one-line summary (progress display).
