@@ -168,7 +168,13 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   // Whether the run is over: the planner says no reachable frontier remains, or sim time ran
   // out, or coverage stopped growing.
   const auto finished = [&] {
-    if (status && status->exploration_complete) {
+    if (status && status->exploration_complete && status->frontier_groups_given_up > 0) {
+      // The planner has nothing left but frontiers it could not get to: not complete.
+      report.result = "stuck";
+      report.reason = "the planner gave up on " +
+                      std::to_string(status->frontier_groups_given_up) +
+                      " frontier group(s) it could not reach";
+    } else if (status && status->exploration_complete) {
       report.result = "complete";
     } else if (t_sim() >= config.max_sim_time_s) {
       report.result = "timeout";

@@ -11,7 +11,7 @@
 // waits for the plan made for it before the vehicle runs the next T (the planner then grows a
 // fixed number of edges per cycle), so a seed reproduces a run exactly, at the speed the
 // machine allows. It ends when the planner reports that no
-// reachable frontier remains (complete), at max_sim_time_s (timeout), when coverage has not
+// reachable frontier remains (complete; stuck when it gave some up), at max_sim_time_s (timeout), when coverage has not
 // grown for stuck_after_s of simulated time (stuck), or when stopped.
 
 #include <array>
