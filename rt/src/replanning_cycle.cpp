@@ -109,9 +109,15 @@ template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run_for_edges(
     FunctionRef<std::int64_t()> now_ns, std::uint64_t edges,
     FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
-  const std::uint64_t stop_at = planner_.stats().edges_added + edges;
-  return run_growing(now_ns, [&] { return planner_.stats().edges_added >= stop_at; },
-                     choose_target);
+  // Iterations are bounded too: where no selection can add an edge (every random plan from the
+  // tree collides at once), the edge count alone would never be reached.
+  const PlannerStats& stats = planner_.stats();
+  const std::uint64_t stop_at = stats.edges_added + edges;
+  const std::uint64_t give_up_at = stats.iterations + 20 * edges;
+  return run_growing(
+      now_ns,
+      [&] { return stats.edges_added >= stop_at || stats.iterations >= give_up_at; },
+      choose_target);
 }
 
 template <VehicleModel V>

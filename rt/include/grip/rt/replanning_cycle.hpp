@@ -86,8 +86,9 @@ class ReplanningCycle {
   CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
                    FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
   // Lockstep (a simulation that waits for each plan): growth adds `edges` edges, fewer only
-  // when the goal is reached or the pools run out, however long it takes, so that a seed
-  // reproduces a run exactly. now_ns only times the phases.
+  // when the goal is reached, the pools run out or 20 x `edges` selections added none,
+  // however long it takes, so that a seed reproduces a run exactly. now_ns only times the
+  // phases.
   CycleOutcome run_for_edges(FunctionRef<std::int64_t()> now_ns, std::uint64_t edges,
                              FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
 
