@@ -102,7 +102,8 @@ CycleOutcome ReplanningCycle<V>::run(
     FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
     FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
   const std::int64_t stop_at = deadline_ns - config_.safety_margin_ns;
-  return run_growing(now_ns, [&] { return now_ns() >= stop_at; }, choose_target);
+  return run_growing(
+      now_ns, [&] { return now_ns() >= stop_at; }, choose_target);
 }
 
 template <VehicleModel V>
@@ -115,8 +116,7 @@ CycleOutcome ReplanningCycle<V>::run_for_edges(
   const std::uint64_t stop_at = stats.edges_added + edges;
   const std::uint64_t give_up_at = stats.iterations + 20 * edges;
   return run_growing(
-      now_ns,
-      [&] { return stats.edges_added >= stop_at || stats.iterations >= give_up_at; },
+      now_ns, [&] { return stats.edges_added >= stop_at || stats.iterations >= give_up_at; },
       choose_target);
 }
 

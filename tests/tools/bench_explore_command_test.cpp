@@ -9,26 +9,19 @@
 #include <string>
 
 #include "grip_command.hpp"
+#include "small_room_map.hpp"
 
 namespace {
 
 using grip::testing::CommandRun;
-
-std::string write_room_map() {
-  const std::string path = ::testing::TempDir() + "grip-bench-explore-room.map";
-  std::ofstream out(path);
-  out << "type octile\nheight 10\nwidth 10\nmap\n"
-      << "@@@@@@@@@@\n@........@\n@........@\n@...@@...@\n@...@@...@\n"
-      << "@........@\n@.@@@@@..@\n@........@\n@........@\n@@@@@@@@@@\n";
-  return path;
-}
 
 TEST(BenchExploreCommand, RunsEveryWorldRobotAndSeedAndTabulatesThem) {
   const std::string out_dir = ::testing::TempDir() + "grip-bench-explore";
   const std::string json = ::testing::TempDir() + "grip-bench-explore.json";
   std::filesystem::remove_all(out_dir);
   const CommandRun r = grip::testing::run_grip(
-      "bench explore --scenes '' --map " + write_room_map() +
+      "bench explore --scenes '' --map " +
+      grip::testing::write_small_room_map("grip-bench-explore-room.map") +
       " --robots dd-vel --seeds 2 --lockstep --max-sim-time 300 --jobs 2 --domain 85 --out " +
       out_dir + " --json " + json);
   ASSERT_EQ(r.status, 0) << r.output;

@@ -16,6 +16,7 @@
 
 #include "child_process.hpp"
 #include "grip_command.hpp"
+#include "small_room_map.hpp"
 
 namespace {
 
@@ -24,14 +25,8 @@ using grip::testing::kGrip;
 
 CommandRun run(const std::string& arguments) { return grip::testing::run_grip(arguments); }
 
-// An 8 m x 8 m room (1 m MovingAI cells) with a pillar and a wall to explore around.
 std::string write_small_map() {
-  const std::string path = ::testing::TempDir() + "grip-explore-small.map";
-  std::ofstream out(path);
-  out << "type octile\nheight 10\nwidth 10\nmap\n"
-      << "@@@@@@@@@@\n@........@\n@........@\n@...@@...@\n@...@@...@\n"
-      << "@........@\n@.@@@@@..@\n@........@\n@........@\n@@@@@@@@@@\n";
-  return path;
+  return grip::testing::write_small_room_map("grip-explore-small.map");
 }
 
 nlohmann::json read_json(const std::string& path) {
@@ -134,9 +129,9 @@ TEST(ExploreCommand, LockstepSimulatorWaitsForAPlannerThatStartsLater) {
       {"/bin/sh", "-c",
        "sleep 2 && exec " + kGrip + " planner --robot dd-vel --domain 84 --startup-timeout 60"});
   ASSERT_TRUE(planner.has_value());
-  const CommandRun r = run("sim --map " + map +
-                           " --robot dd-vel --lockstep --max-sim-time 300 --domain 84 --report " +
-                           report);
+  const CommandRun r =
+      run("sim --map " + map +
+          " --robot dd-vel --lockstep --max-sim-time 300 --domain 84 --report " + report);
   planner->kill(SIGTERM);
   planner->wait();
   ASSERT_EQ(r.status, 0) << r.output;

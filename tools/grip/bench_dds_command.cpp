@@ -31,7 +31,6 @@
 #include "grip/rt/latency_histogram.hpp"
 #include "grip/scenes/scenes.hpp"
 
-
 namespace grip::tools {
 
 namespace {

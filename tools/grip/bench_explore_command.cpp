@@ -61,11 +61,20 @@ std::string world_label(const Run& r) {
 
 std::vector<std::string> explore_args(const BenchExploreOptions& o, const Run& r,
                                       const std::string& self, unsigned domain) {
-  std::vector<std::string> args{self, "explore", r.is_map ? "--map" : "--scene", r.world,
-                                "--robot", r.robot, "--seed", std::to_string(r.seed),
-                                "--max-sim-time", std::to_string(o.max_sim_time_s),
-                                "--domain", std::to_string(domain),
-                                "--report", o.out_dir + "/" + r.stem + ".json"};
+  std::vector<std::string> args{self,
+                                "explore",
+                                r.is_map ? "--map" : "--scene",
+                                r.world,
+                                "--robot",
+                                r.robot,
+                                "--seed",
+                                std::to_string(r.seed),
+                                "--max-sim-time",
+                                std::to_string(o.max_sim_time_s),
+                                "--domain",
+                                std::to_string(domain),
+                                "--report",
+                                o.out_dir + "/" + r.stem + ".json"};
   if (o.lockstep) {
     args.insert(args.end(), {"--lockstep", "--lockstep-edges", std::to_string(o.lockstep_edges)});
   } else {
@@ -159,7 +168,8 @@ void print_table(const BenchExploreOptions& o, const std::vector<Row>& rows) {
             << std::setw(9) << "complete" << std::setw(11) << "collisions" << std::setw(9)
             << "collided" << std::setw(10) << "cov min" << std::setw(10) << "cov med"
             << std::setw(11) << "sim s med" << std::setw(12) << "wall s med" << std::setw(11)
-            << "speed med" << std::setw(11) << "1st coll s" << "  target\n";
+            << "speed med" << std::setw(11) << "1st coll s"
+            << "  target\n";
   bool all_met = true;
   for (const Row& r : rows) {
     const bool met = r.target_met(o.no_safety);
@@ -168,11 +178,10 @@ void print_table(const BenchExploreOptions& o, const std::vector<Row>& rows) {
     complete << r.complete << "/" << r.runs;
     std::cout << std::left << std::setw(26) << r.world << std::setw(10) << r.robot << std::right
               << std::setw(9) << complete.str() << std::setw(11) << r.collisions << std::setw(9)
-              << r.collided << std::fixed << std::setprecision(3) << std::setw(10)
-              << r.min_coverage << std::setw(10) << median(r.coverage) << std::setprecision(1)
-              << std::setw(11) << median(r.sim_time) << std::setw(12) << median(r.wall_time)
-              << std::setprecision(2) << std::setw(11) << median(r.speed) << std::setprecision(1)
-              << std::setw(11);
+              << r.collided << std::fixed << std::setprecision(3) << std::setw(10) << r.min_coverage
+              << std::setw(10) << median(r.coverage) << std::setprecision(1) << std::setw(11)
+              << median(r.sim_time) << std::setw(12) << median(r.wall_time) << std::setprecision(2)
+              << std::setw(11) << median(r.speed) << std::setprecision(1) << std::setw(11);
     if (r.first_collision.empty()) {
       std::cout << "-";
     } else {
@@ -271,8 +280,11 @@ int run_bench(const BenchExploreOptions& o) {
     j["max_sim_time_s"] = o.max_sim_time_s;
     nlohmann::json list = nlohmann::json::array();
     for (const Run& r : runs) {
-      nlohmann::json e{{"world", world_label(r)}, {"robot", r.robot}, {"seed", r.seed},
-                       {"exit_status", r.exit_status}, {"report", o.out_dir + "/" + r.stem + ".json"}};
+      nlohmann::json e{{"world", world_label(r)},
+                       {"robot", r.robot},
+                       {"seed", r.seed},
+                       {"exit_status", r.exit_status},
+                       {"report", o.out_dir + "/" + r.stem + ".json"}};
       if (!r.report.is_null()) {
         for (const char* key : {"result", "coverage", "collisions", "sim_time_s", "wall_time_s",
                                 "mean_speed_fraction", "distance_m", "brake_plans",

@@ -12,8 +12,8 @@ void register_stress_command(CLI::App& app);
 void register_planner_command(CLI::App& app);
 void register_explore_commands(CLI::App& app);  // `grip explore` and `grip sim`
 void register_render_command(CLI::App& app);    // figures from their reports
-// Benchmarks registered on `bench` besides `paper`: `dds`, `explore`, and `ompl` (tools/ompl; a stub
-// there when built without OMPL).
+// Benchmarks registered on `bench` besides `paper`: `dds`, `explore`, and `ompl` (tools/ompl; a
+// stub there when built without OMPL).
 void register_bench_dds_command(CLI::App& bench);
 void register_bench_explore_command(CLI::App& bench);
 void register_bench_ompl_command(CLI::App& bench);

@@ -156,7 +156,8 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
     measure_group(grid, group);
     if (!group.reachable() || group.size < config_.min_group_cells) continue;
     const auto cells = group_cells(g);
-    if (std::all_of(cells.begin(), cells.end(), [&](std::uint32_t c) { return given_up_[c] != 0; })) {
+    if (std::all_of(cells.begin(), cells.end(),
+                    [&](std::uint32_t c) { return given_up_[c] != 0; })) {
       ++given_up_groups_;
       continue;
     }

@@ -231,7 +231,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   int tiles_y_ = 0;
   std::uint64_t last_state_stamp_ = 0;
   std::uint64_t last_state_sequence_ = 0;
-  bool lockstep_seen_ = false;  // the vehicle's states ask for lockstep
+  bool lockstep_seen_ = false;                 // the vehicle's states ask for lockstep
   std::optional<grip_msg_Goal> pending_goal_;  // arrived before the map: checked once it exists
   RateLimitedLog log_;
   bool was_alive_ = false;
@@ -273,7 +273,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   double time_scale_ = 1.0;
   bool lockstep_ = false;  // from the first state: plan once per state, by edge count
   std::uint64_t lockstep_edges_ = 0;
-  StateSample first_state_;  // the state start-up planned from
+  StateSample first_state_;                      // the state start-up planned from
   std::atomic<std::int64_t> period_wall_ns_{0};  // set at start-up, read by the publish thread
   std::uint64_t state_sequence_ = 0;
   std::uint64_t chain_start_ns_ = 0;  // vehicle time at which the first plan from this tree starts
@@ -735,8 +735,8 @@ void PlannerParticipantFor<V>::choose_frontier_target(bool map_changed) noexcept
   }
   // No closer for a long while: dynamics or a gap the chassis cannot pass keep the vehicle from
   // it. Set it aside; the next cycle picks another target, or ends exploration.
-  const auto since_progress_ns = static_cast<double>(static_cast<std::int64_t>(plan_start_ns_) -
-                                                     static_cast<std::int64_t>(target_progress_ns_));
+  const auto since_progress_ns = static_cast<double>(
+      static_cast<std::int64_t>(plan_start_ns_) - static_cast<std::int64_t>(target_progress_ns_));
   if (since_progress_ns > config_.frontier_give_up_s * 1e9) {
     frontiers_->give_up(frontiers_->target());
     target_best_rho_m_ = std::numeric_limits<double>::infinity();
@@ -898,9 +898,8 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
   const double default_edges =
       lockstep_ ? 4.0 * static_cast<double>(lockstep_edges_) : 400.0 * wall_budget_ms;
   planner_config.max_edges =
-      config_.max_edges != 0
-          ? config_.max_edges
-          : static_cast<std::uint32_t>(std::clamp(default_edges, 2000.0, 2e5));
+      config_.max_edges != 0 ? config_.max_edges
+                             : static_cast<std::uint32_t>(std::clamp(default_edges, 2000.0, 2e5));
   planner_config.max_trajectories = planner_config.max_edges / 2;
   CycleConfig cycle_config;
   cycle_config.cycle_s = config_.cycle_s;
@@ -997,9 +996,9 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
   PlannerParticipantReport report;
   report.policy = "lockstep";
   report.time_scale = time_scale_;
-  const std::int64_t run_until =
-      config_.duration_s > 0.0 ? platform::now_ns() + ns_of(config_.duration_s)
-                               : std::numeric_limits<std::int64_t>::max();
+  const std::int64_t run_until = config_.duration_s > 0.0
+                                     ? platform::now_ns() + ns_of(config_.duration_s)
+                                     : std::numeric_limits<std::int64_t>::max();
   const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
   StateSample state = first_state_;  // start-up's state: the first cycle plans for it
   bool have_state = true;
@@ -1067,8 +1066,9 @@ PlannerTreePicture PlannerParticipantFor<V>::last_tree() const {
       line.push_back({state_x(q), state_y(q)});
     }
   });
-  planner.visit_path(cycle_->committed(),
-                     [&](const State& q) { picture.plan.push_back({state_x(q), state_y(q)}); });
+  planner.visit_path(cycle_->committed(), [&](const State& q) {
+    picture.plan.push_back({state_x(q), state_y(q)});
+  });
   return picture;
 }
 

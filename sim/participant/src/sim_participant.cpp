@@ -171,8 +171,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     if (status && status->exploration_complete && status->frontier_groups_given_up > 0) {
       // The planner has nothing left but frontiers it could not get to: not complete.
       report.result = "stuck";
-      report.reason = "the planner gave up on " +
-                      std::to_string(status->frontier_groups_given_up) +
+      report.reason = "the planner gave up on " + std::to_string(status->frontier_groups_given_up) +
                       " frontier group(s) it could not reach";
     } else if (status && status->exploration_complete) {
       report.result = "complete";
@@ -194,8 +193,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   if (config.lockstep) {
     // Each state waits for the plan made for it (and the status that goes with it), then the
     // vehicle runs T: the planner's cycle, however long it took, costs no simulated time.
-    const auto ticks_per_cycle = static_cast<std::uint64_t>(
-        std::max(1L, std::lround(config.cycle_s / dt)));
+    const auto ticks_per_cycle =
+        static_cast<std::uint64_t>(std::max(1L, std::lround(config.cycle_s / dt)));
     while (!stop.load(std::memory_order_acquire)) {
       const std::int64_t asked = platform::now_ns();
       std::int64_t repeated = asked;

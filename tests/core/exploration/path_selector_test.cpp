@@ -227,8 +227,8 @@ TEST(PathSelectorFromAfar, SeeingAFewFrontierCellsStillMovesTowardThem) {
   auto selector = PathSelector::create(160, 30, 0.1, pc.max_edges, config).value();
   ASSERT_EQ(frontiers.update(grid, planner.checker().clearance(), 1.0, 1.5),
             ExplorationStatus::kTarget);
-  ASSERT_TRUE(planner.set_problem(robot.rest_state(1.0, 1.5, 0.0),
-                                  GoalCells{frontiers.approach_cells()}));
+  ASSERT_TRUE(
+      planner.set_problem(robot.rest_state(1.0, 1.5, 0.0), GoalCells{frontiers.approach_cells()}));
   selector.set_target(grid, frontiers.target_cells());
   // Grow until the first tree state sees a target cell.
   PathChoice choice;

@@ -11,8 +11,8 @@
 // waits for the plan made for it before the vehicle runs the next T (the planner then grows a
 // fixed number of edges per cycle), so a seed reproduces a run exactly, at the speed the
 // machine allows. It ends when the planner reports that no
-// reachable frontier remains (complete; stuck when it gave some up), at max_sim_time_s (timeout), when coverage has not
-// grown for stuck_after_s of simulated time (stuck), or when stopped.
+// reachable frontier remains (complete; stuck when it gave some up), at max_sim_time_s (timeout),
+// when coverage has not grown for stuck_after_s of simulated time (stuck), or when stopped.
 
 #include <array>
 #include <atomic>
@@ -39,7 +39,7 @@ struct SimRunConfig {
   double start_x_m = 0.0;
   double start_y_m = 0.0;
   double start_theta_rad = 0.0;
-  double time_scale = 1.0;       // simulated seconds per wall-clock second (not in lockstep)
+  double time_scale = 1.0;  // simulated seconds per wall-clock second (not in lockstep)
   bool lockstep = false;
   double cycle_s = 0.05;         // the planner's T, for the QoS deadlines
   double sensor_radius_m = 0.0;  // 0: a tenth of the map's larger side
