@@ -315,6 +315,9 @@ RetainStatus Planner<V>::retain_towards(TreeState new_root, GoalSpec goal, doubl
   set_horizon(horizon_s);
   retain_stats_ = RetainStats{};
   retain_stats_.edges_before = tree_.edge_count();
+  // The earliest goal state found so far: rho and F are sampled along edges, and a path that
+  // crosses F between two samples must not be lost to one that lingers there.
+  const TreeState known_solution = solution_;
 
   // Re-root: the part of the edge up to the new root becomes the root (reduced to its last
   // state); the rest of the tree above is unreachable, since no vehicle drives back in time.
@@ -324,7 +327,7 @@ RetainStatus Planner<V>::retain_towards(TreeState new_root, GoalSpec goal, doubl
   tree_.unlink(root);
   tree_.make_root(root);
   const bool map_changed = grid_->revision() != validated_revision_;
-  prune_and_order(root, shift, map_changed, newly_blocked);
+  prune_and_order(root, shift, map_changed, newly_blocked, known_solution);
   validated_revision_ = grid_->revision();
   // Everything the walk did not keep goes back to the pools.
   const std::uint32_t before_release = tree_.edge_count();
@@ -332,7 +335,7 @@ RetainStatus Planner<V>::retain_towards(TreeState new_root, GoalSpec goal, doubl
     if (tree_.contains(e) && keep_[e] == 0) tree_.release_edge(e);
   }
   retain_stats_.released = before_release - tree_.edge_count();
-  rescore_tree();
+  rescore_tree(known_solution);
   retain_stats_.edges_kept = tree_.edge_count();
   cycle_edges_ = 0;
   return RetainStatus::kOk;
@@ -340,7 +343,7 @@ RetainStatus Planner<V>::retain_towards(TreeState new_root, GoalSpec goal, doubl
 
 template <VehicleModel V>
 void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift, bool map_changed,
-                                 const CellBox* newly_blocked) noexcept {
+                                 const CellBox* newly_blocked, TreeState known_solution) noexcept {
   // keep_[e]: 0 released, 1 kept, 2 kept but its children released (it was cut short);
   // kInGoal marks edges with a sampled state in F, then those with one below them.
   constexpr std::uint8_t kInGoal = 4;
@@ -432,6 +435,10 @@ void Planner<V>::prune_and_order(EdgeHandle root, std::uint32_t shift, bool map_
       reaches_goal = true;
     }
   }
+  if (const TreeState s = kept_goal_state(known_solution); s.edge != kNoHandle) {
+    keep_[s.edge] = static_cast<std::uint8_t>(keep_[s.edge] | kInGoal);
+    reaches_goal = true;
+  }
   // Once a path reaches F, every path that does not is pruned, so that the cycle improves
   // the solution (Algorithm 1).
   if (reaches_goal) {
@@ -518,7 +525,20 @@ void Planner<V>::make_room(EdgeHandle root) noexcept {
 }
 
 template <VehicleModel V>
-void Planner<V>::rescore_tree() noexcept {
+TreeState Planner<V>::kept_goal_state(TreeState s) const noexcept {
+  // During retainment, after the walk: s if it is still in the kept tree below the root (not
+  // cut off, not released) and in the current F.
+  if (s.edge == kNoHandle || !tree_.contains(s.edge)) return TreeState{};
+  s = resolve(s);
+  if (s.edge == kNoHandle || s.edge == tree_.root() || keep_[s.edge] == 0) return TreeState{};
+  const Edge& edge = tree_.edge(s.edge);
+  if (s.index <= edge.first || s.index > edge.last) return TreeState{};
+  if (!in_goal_region(tree_.state(edge.trajectory, s.index))) return TreeState{};
+  return s;
+}
+
+template <VehicleModel V>
+void Planner<V>::rescore_tree(TreeState known_solution) noexcept {
   // Children of the root get priority 1, then Eq. 2 down the tree; the heap is rebuilt; the
   // best state and the solution are found again (over the same sampled states as rho).
   heap_.clear();
@@ -580,6 +600,11 @@ void Planner<V>::rescore_tree() noexcept {
       break;
     }
   }
+  if (const TreeState s = kept_goal_state(known_solution);
+      s.edge != kNoHandle && (!solved() || tree_.step_of(s.edge, s.index) <
+                                               tree_.step_of(solution_.edge, solution_.index))) {
+    solution_ = s;
+  }
 }
 
 template <VehicleModel V>
@@ -617,6 +642,7 @@ bool Planner<V>::iterate() noexcept {
   // apply Eq. 2 to the parts of the selected edge whether or not the propagation succeeded.
   const EdgeHandle selected = heap_.pop();
   const double new_priority = std::fma(2.0, tree_.edge(selected).priority, 1.0);
+  const double selected_rho_m = tree_.edge(selected).rho_m;
   const EdgeHandle added = expand_from(random_state_along(selected));
   tree_.edge(selected).priority = new_priority;
   if (added != kNoHandle) {
@@ -630,7 +656,11 @@ bool Planner<V>::iterate() noexcept {
       push_scored(head);
     }
     Edge& n = tree_.edge(added);
-    n.priority = static_cast<double>(cycle_edges_ - 1);  // p(e) = i, edges before it
+    // p(e) = i, the edges before it (Eq. 2), for an edge that gets closer to F than the one it
+    // grew from. One that does not counts as another selection of that edge: otherwise every
+    // failed attempt out of a dead end hands it a fresh, low priority, and the dead end keeps
+    // winning the heap long after its own edges have been penalised.
+    n.priority = n.rho_m < selected_rho_m ? static_cast<double>(cycle_edges_ - 1) : new_priority;
     push_scored(added);
   }
   push_scored(selected);

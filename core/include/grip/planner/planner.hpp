@@ -226,8 +226,9 @@ class Planner {
   void set_horizon(double horizon_s) noexcept;
   void reset_tree(const State& q) noexcept;
   void prune_and_order(EdgeHandle root, std::uint32_t shift, bool map_changed,
-                       const CellBox* newly_blocked) noexcept;
-  void rescore_tree() noexcept;
+                       const CellBox* newly_blocked, TreeState known_solution) noexcept;
+  TreeState kept_goal_state(TreeState s) const noexcept;
+  void rescore_tree(TreeState known_solution) noexcept;
   void make_room(EdgeHandle root) noexcept;
   TreeState select() noexcept;
   TreeState select_rrt() noexcept;
