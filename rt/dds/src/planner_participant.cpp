@@ -724,9 +724,11 @@ void PlannerParticipantFor<V>::choose_frontier_target(bool map_changed) noexcept
   if (group.nearest_cell != FrontierGroup::kNoCell) {
     const double x = grid_->cell_center_x(grid_->cell_x(group.nearest_cell));
     const double y = grid_->cell_center_y(grid_->cell_y(group.nearest_cell));
-    // A new target (its nearest cell moved by more than a few metres), or progress toward it.
+    // A new target (its nearest cell moved by more than a few metres), progress toward it, or
+    // newly sensed cells: a vehicle that still learns the map is not stuck, and in a small
+    // space successive targets lie within a few metres of each other.
     if (std::hypot(x - target_x_m_, y - target_y_m_) > 3.0 ||
-        group.rho_m < target_best_rho_m_ - 0.5) {
+        group.rho_m < target_best_rho_m_ - 0.5 || map_changed) {
       target_best_rho_m_ = group.rho_m;
       target_progress_ns_ = plan_start_ns_;
     }

@@ -169,10 +169,19 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   // out, or coverage stopped growing.
   const auto finished = [&] {
     if (status && status->exploration_complete && status->frontier_groups_given_up > 0) {
-      // The planner has nothing left but frontiers it could not get to: not complete.
-      report.result = "stuck";
-      report.reason = "the planner gave up on " + std::to_string(status->frontier_groups_given_up) +
-                      " frontier group(s) it could not reach";
+      // The planner has nothing left but frontiers it could not get to. Only the ground truth
+      // tells whether reachable free space lay behind them: if every reachable cell was sensed,
+      // what is left unknown is out of the vehicle's reach and the run is complete.
+      const std::string given_up = std::to_string(status->frontier_groups_given_up);
+      if (coverage_of(sensed, *reachable) >= 1.0) {
+        report.result = "complete";
+        report.reason = "the planner gave up on " + given_up +
+                        " frontier group(s) with no reachable free space behind them";
+      } else {
+        report.result = "stuck";
+        report.reason =
+            "the planner gave up on " + given_up + " frontier group(s) it could not reach";
+      }
     } else if (status && status->exploration_complete) {
       report.result = "complete";
     } else if (t_sim() >= config.max_sim_time_s) {
