@@ -52,6 +52,7 @@ void ReplanningCycle<V>::set_goal(GoalCells goal) noexcept {
     if (!goal_cells_.push_back(c)) break;
   }
   goal_is_cells_ = true;
+  goal_changed_ = true;
 }
 
 template <VehicleModel V>
@@ -130,12 +131,15 @@ CycleOutcome ReplanningCycle<V>::run_growing(
   const TreeState next_root = committed_.edge != kNoHandle && !resync_
                                   ? planner_.state_at_step(committed_, cycle_steps_)
                                   : TreeState{};
+  const RhoUpdate rho = goal_changed_ || cycles_since_rho_ + 1 >= config_.rho_refresh_cycles
+                            ? RhoUpdate::kRecompute
+                            : RhoUpdate::kKeep;
   if (next_root.edge != kNoHandle) {
     const CellBox* blocked = blocked_noted_ ? &newly_blocked_ : nullptr;
-    out.retain_status =
-        goal_is_cells_
-            ? planner_.retain(next_root, GoalCells{goal_cells_.span()}, config_.cycle_s, blocked)
-            : planner_.retain(next_root, goal_, config_.cycle_s, blocked);
+    out.retain_status = goal_is_cells_
+                            ? planner_.retain(next_root, GoalCells{goal_cells_.span()},
+                                              config_.cycle_s, blocked, rho)
+                            : planner_.retain(next_root, goal_, config_.cycle_s, blocked, rho);
     out.edges_retained = planner_.last_retain().edges_kept;
   } else {
     out.retain_status = RetainStatus::kRootNotInTree;
@@ -155,6 +159,9 @@ CycleOutcome ReplanningCycle<V>::run_growing(
     committed_ = TreeState{};  // the new map or T cut the rest of the previous plan
   }
 
+  const bool rho_recomputed = rho == RhoUpdate::kRecompute || out.restarted;
+  cycles_since_rho_ = rho_recomputed ? 0 : cycles_since_rho_ + 1;
+  goal_changed_ = false;
   newly_blocked_ = CellBox{};
   blocked_noted_ = false;
   out.retain_ns = now_ns() - cycle_start;

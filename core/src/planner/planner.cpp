@@ -285,19 +285,19 @@ void Planner<V>::reset_tree(const State& q) noexcept {
 
 template <VehicleModel V>
 RetainStatus Planner<V>::retain(TreeState new_root, const GoalRegion& goal, double horizon_s,
-                                const CellBox* newly_blocked) noexcept {
-  return retain_towards(new_root, GoalSpec{&goal, {}}, horizon_s, newly_blocked);
+                                const CellBox* newly_blocked, RhoUpdate rho) noexcept {
+  return retain_towards(new_root, GoalSpec{&goal, {}}, horizon_s, newly_blocked, rho);
 }
 
 template <VehicleModel V>
 RetainStatus Planner<V>::retain(TreeState new_root, GoalCells goal, double horizon_s,
-                                const CellBox* newly_blocked) noexcept {
-  return retain_towards(new_root, GoalSpec{nullptr, goal.cells}, horizon_s, newly_blocked);
+                                const CellBox* newly_blocked, RhoUpdate rho) noexcept {
+  return retain_towards(new_root, GoalSpec{nullptr, goal.cells}, horizon_s, newly_blocked, rho);
 }
 
 template <VehicleModel V>
 RetainStatus Planner<V>::retain_towards(TreeState new_root, GoalSpec goal, double horizon_s,
-                                        const CellBox* newly_blocked) noexcept {
+                                        const CellBox* newly_blocked, RhoUpdate rho) noexcept {
   if (config_.selection != Selection::kGrip) return RetainStatus::kUnsupportedSelection;
   GRIP_ASSERT(config_.steps_per_record == 1);
   if (!problem_set_ || new_root.edge == kNoHandle || !tree_.contains(new_root.edge) ||
@@ -311,7 +311,9 @@ RetainStatus Planner<V>::retain_towards(TreeState new_root, GoalSpec goal, doubl
   if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
     return RetainStatus::kRootInCollision;
   }
-  if (const RetainStatus s = set_goal(goal); s != RetainStatus::kOk) return s;
+  if (rho == RhoUpdate::kRecompute) {
+    if (const RetainStatus s = set_goal(goal); s != RetainStatus::kOk) return s;
+  }
   set_horizon(horizon_s);
   retain_stats_ = RetainStats{};
   retain_stats_.edges_before = tree_.edge_count();

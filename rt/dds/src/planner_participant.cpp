@@ -269,6 +269,9 @@ class PlannerParticipantFor final : public PlannerParticipant {
   // Progress toward the frontier target: its best rho_A* and when (vehicle time) it was reached.
   double target_best_rho_m_ = std::numeric_limits<double>::infinity();
   std::uint64_t target_progress_ns_ = 0;
+  bool target_chosen_ = false;  // choose_frontier_target has chosen at least once
+  std::uint32_t cycles_since_target_ = 0;
+  bool map_changed_since_target_ = false;
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
   double time_scale_ = 1.0;
   bool lockstep_ = false;  // from the first state: plan once per state, by edge count
@@ -707,9 +710,14 @@ void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured
 
 template <VehicleModel V>
 void PlannerParticipantFor<V>::choose_frontier_target(bool map_changed) noexcept {
-  // The target is re-chosen every cycle from where the plan starts: the robot moves even when
-  // the map does not change.
-  if (map_changed) clearance_->compute(*grid_);
+  // The target is re-chosen from where the plan starts every target_refresh_cycles cycles (the
+  // robot moves even when the map does not change), and the first time at once.
+  map_changed_since_target_ = map_changed_since_target_ || map_changed;
+  if (target_chosen_ && ++cycles_since_target_ < config_.target_refresh_cycles) return;
+  target_chosen_ = true;
+  cycles_since_target_ = 0;
+  const bool map_changed_since = std::exchange(map_changed_since_target_, false);
+  if (map_changed_since) clearance_->compute(*grid_);
   const State& here = cycle_->plan_start();
   const ExplorationStatus status =
       frontiers_->update(*grid_, *clearance_, state_x(here), state_y(here));
@@ -728,7 +736,7 @@ void PlannerParticipantFor<V>::choose_frontier_target(bool map_changed) noexcept
     // newly sensed cells: a vehicle that still learns the map is not stuck, and in a small
     // space successive targets lie within a few metres of each other.
     if (std::hypot(x - target_x_m_, y - target_y_m_) > 3.0 ||
-        group.rho_m < target_best_rho_m_ - 0.5 || map_changed) {
+        group.rho_m < target_best_rho_m_ - 0.5 || map_changed_since) {
       target_best_rho_m_ = group.rho_m;
       target_progress_ns_ = plan_start_ns_;
     }
@@ -916,6 +924,7 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
         std::to_string(margin_ms) + " ms");
   }
   cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
+  cycle_config.rho_refresh_cycles = config_.target_refresh_cycles;
   auto cycle = ReplanningCycle<V>::create(vehicle_, *grid_, planner_config, cycle_config);
   if (!cycle) return cycle.error();
   cycle_.emplace(std::move(cycle).value());

@@ -102,6 +102,12 @@ struct RetainStats {
   std::uint32_t edges_kept = 0;       // the tree carried over into the cycle
 };
 
+// Whether a retainment recomputes rho toward F (a whole-map wavefront) or keeps the field of
+// the previous call. kKeep is for a caller that passes the same F as last time and accepts rho
+// computed on an older map: rho only orders the search, collisions are always checked on the
+// current map.
+enum class RhoUpdate { kRecompute, kKeep };
+
 // A state reached in the tree: recorded state k of edge e.
 struct TreeState {
   EdgeHandle edge = kNoHandle;
@@ -139,13 +145,15 @@ class Planner {
   // only states within the chassis' reach of it are checked again; without it, every state is
   // when the grid changed at all.
   RetainStatus retain(TreeState new_root, const GoalRegion& goal, double horizon_s,
-                      const CellBox* newly_blocked = nullptr) noexcept;
+                      const CellBox* newly_blocked = nullptr,
+                      RhoUpdate rho = RhoUpdate::kRecompute) noexcept;
   // Starts a fresh tree at q (when q is not on the tree), allocation-free.
   RetainStatus restart(const State& q, const GoalRegion& goal, double horizon_s) noexcept;
   // retain() and restart() with F as a set of cells (kGoalOutsideGrid for an index outside the
   // grid, kGoalWithoutFreeCell when none is free); the span is read during the call only.
   RetainStatus retain(TreeState new_root, GoalCells goal, double horizon_s,
-                      const CellBox* newly_blocked = nullptr) noexcept;
+                      const CellBox* newly_blocked = nullptr,
+                      RhoUpdate rho = RhoUpdate::kRecompute) noexcept;
   RetainStatus restart(const State& q, GoalCells goal, double horizon_s) noexcept;
   const RetainStats& last_retain() const noexcept { return retain_stats_; }
 
@@ -220,7 +228,7 @@ class Planner {
   Status problem_status(RetainStatus status, const State& start, const std::string& goal);
   RetainStatus restart_towards(const State& q, GoalSpec goal, double horizon_s) noexcept;
   RetainStatus retain_towards(TreeState new_root, GoalSpec goal, double horizon_s,
-                              const CellBox* newly_blocked) noexcept;
+                              const CellBox* newly_blocked, RhoUpdate rho) noexcept;
   RetainStatus set_goal(GoalSpec goal) noexcept;
   bool in_goal_region(const State& q) const noexcept;
   void set_horizon(double horizon_s) noexcept;

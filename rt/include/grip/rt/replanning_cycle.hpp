@@ -25,6 +25,11 @@ struct CycleConfig {
   // for the stalls of a shared machine (several milliseconds on the VMs measured here).
   std::int64_t safety_margin_ns = 5'000'000;
   std::uint32_t max_plan_pieces = 1024;
+  // rho toward a target that has not changed is recomputed every this many cycles (1: every
+  // cycle). It is a wavefront over the whole map; where the map changes every cycle, as in
+  // exploration, recomputing it each time can take most of a short cycle's budget, while rho
+  // only orders the search (collisions are always checked on the current map).
+  std::uint32_t rho_refresh_cycles = 1;
 };
 
 // What a cycle did.
@@ -60,6 +65,7 @@ class ReplanningCycle {
   void set_goal(const GoalRegion& goal) noexcept {
     goal_ = goal;
     goal_is_cells_ = false;
+    goal_changed_ = true;
   }
   // The same as a set of cells (exploration: a frontier group's approach cells), copied; cells
   // beyond the grid's cell count are dropped.
@@ -115,7 +121,9 @@ class ReplanningCycle {
   GoalRegion goal_;
   BoundedVector<std::uint32_t> goal_cells_;
   bool goal_is_cells_ = false;  // the target is goal_cells_, not goal_
-  TreeState committed_;         // end of the committed plan in the tree; empty: braking
+  bool goal_changed_ = true;    // since the last retainment or restart
+  std::uint32_t cycles_since_rho_ = 0;
+  TreeState committed_;  // end of the committed plan in the tree; empty: braking
   CellBox newly_blocked_;
   bool blocked_noted_ = false;
   BoundedVector<PlanStep> plan_;

@@ -69,6 +69,11 @@ struct PlannerParticipantConfig {
   // A frontier target the vehicle gets no closer to (by rho_A*, 0.5 m) for this long, in
   // vehicle time, is given up (FrontierMap::give_up) and the next one chosen.
   double frontier_give_up_s = 60.0;
+  // The whole-map passes behind a target (clearance, the frontier wavefront and its groups, the
+  // path selector's rays and rho toward the new target) run every this many cycles, not every
+  // cycle: together they take longer than a short cycle's budget once much of the map is known,
+  // and the tree, which needs that time to grow, is carried over in between. 1: every cycle.
+  std::uint32_t target_refresh_cycles = 5;
   bool no_safety = false;  // the paper's ablation: no contingency check (plans may end unsafe)
   bool lock_memory = true;
   // Called about every 250 ms from run()'s thread with a one-line summary (progress display).
