@@ -101,6 +101,37 @@ TEST_F(ReplanningCycleTest, LockstepGrowsItsEdgesWhateverTheClockAndReproducesAR
   }
 }
 
+TEST_F(ReplanningCycleTest, RhoTowardAnUnchangedTargetIsRecomputedEveryRefreshCycles) {
+  config.rho_refresh_cycles = 3;
+  SetUp();
+  const DistanceField& rho = cycle->planner().rho_field();
+  // Each cycle the map changes somewhere away from the tree, as it does while exploring.
+  const auto run_after_map_change = [&](int i) {
+    const std::uint64_t before = scene.grid.revision();
+    const double x = 14.0 + 0.1 * i;
+    scene.grid.fill_rect(x, 29.0, x + 0.05, 29.05, Cell::kObstacle);
+    EXPECT_NE(scene.grid.revision(), before);
+    const CycleOutcome out = run_cycle();
+    EXPECT_EQ(out.retain_status, RetainStatus::kOk);
+    EXPECT_FALSE(out.restarted);
+  };
+  (void)run_cycle();  // the first cycle starts the tree (a restart computes rho)
+  ASSERT_EQ(rho.source_revision(), scene.grid.revision());
+  const std::uint64_t computed_at = rho.source_revision();
+  run_after_map_change(1);  // kept, kept, then recomputed on the third cycle
+  EXPECT_EQ(rho.source_revision(), computed_at);
+  run_after_map_change(2);
+  EXPECT_EQ(rho.source_revision(), computed_at);
+  run_after_map_change(3);
+  EXPECT_EQ(rho.source_revision(), scene.grid.revision());
+  // A target set again counts as new, even when it is the same: recomputed at once.
+  run_after_map_change(4);
+  EXPECT_NE(rho.source_revision(), scene.grid.revision());
+  cycle->set_goal(GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m});
+  run_after_map_change(5);
+  EXPECT_EQ(rho.source_revision(), scene.grid.revision());
+}
+
 TEST_F(ReplanningCycleTest, EachCycleStartsWhereThePreviousPlanLeadsAfterT) {
   int compared = 0;
   for (int i = 0; i < 30; ++i) {

@@ -35,7 +35,7 @@ struct BenchExploreOptions {
   std::uint64_t first_seed = 1;
   bool lockstep = false;
   std::uint32_t lockstep_edges = 1000;
-  double time_scale = 4.0;
+  double time_scale = 2.0;  // at 4 the planner often runs out of cycle budget on a 2-core machine
   double max_sim_time_s = 1800.0;  // the car needs up to about 1,000 s on the built-in scenes
   bool no_safety = false;
   unsigned jobs = 1;

@@ -40,7 +40,7 @@ struct ExploreOptions {
   std::string start;
   std::string robot = "dd-vel";
   std::uint64_t seed = 1;
-  double time_scale = 4.0;
+  double time_scale = 2.0;  // at 4 the planner often runs out of cycle budget on a 2-core machine
   double max_sim_time_s = 1800.0;  // the car needs up to about 1,000 s on the built-in scenes
   bool no_safety = false;
   bool lockstep = false;
@@ -326,9 +326,10 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
       ->capture_default_str();
   cmd->add_option("--max-sim-time", o.max_sim_time_s, "Give up after this much simulated time [s]")
       ->capture_default_str();
-  cmd->add_flag("--lockstep", o.lockstep,
-                "Deterministic: the simulator waits for each plan, the planner grows a fixed number "
-                "of edges per cycle; as fast as the machine allows (--time-scale unused)");
+  cmd->add_flag(
+      "--lockstep", o.lockstep,
+      "Deterministic: the simulator waits for each plan, the planner grows a fixed number "
+      "of edges per cycle; as fast as the machine allows (--time-scale unused)");
   cmd->add_option("--domain", o.domain, "DDS domain id")->capture_default_str();
   cmd->add_option("--report", o.report, "Write the JSON report here");
   cmd->add_option("--image", o.image, "Draw the run into this PNG");
