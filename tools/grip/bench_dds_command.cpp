@@ -149,15 +149,22 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
 }
 
 struct DdsperfSide {
-  std::vector<double> p50_us, p90_us, p99_us, max_us;
-  std::uint64_t count = 0;
-  std::uint64_t first_window_count = 0;
+  std::vector<double> p50_us, p90_us, p99_us, max_us, round_trips;  // one entry per second
+  std::uint64_t count() const {
+    double n = 0.0;
+    for (const double c : round_trips) n += c;
+    return static_cast<std::uint64_t>(n);
+  }
+  // k: 1% of the round trips, at least 1 and at most one per second.
+  std::size_t pooled_p99_rank() const {
+    const auto k = static_cast<std::size_t>(std::ceil(0.01 * static_cast<double>(count())));
+    return std::min(std::max<std::size_t>(k, 1), max_us.size());
+  }
   // A lower bound of the p99 over all round trips: the k-th largest per-second maximum.
   double pooled_p99_at_least_us() const {
     std::vector<double> maxima = max_us;
     std::sort(maxima.begin(), maxima.end(), std::greater<>());
-    const auto k = static_cast<std::size_t>(std::ceil(0.01 * static_cast<double>(count)));
-    return maxima.empty() ? 0.0 : maxima[std::min(std::max<std::size_t>(k, 1), maxima.size()) - 1];
+    return maxima.empty() ? 0.0 : maxima[pooled_p99_rank() - 1];
   }
 };
 
@@ -198,21 +205,20 @@ Result<DdsperfSide> measure_ddsperf(const BenchDdsOptions& o, std::size_t payloa
       const auto at = line.find(" " + key + " ");
       return at == std::string::npos ? -1.0 : std::atof(line.c_str() + at + key.size() + 2);
     };
-    if (field("50%") < 0.0 || field("99%") < 0.0) continue;
-    if (field("cnt") <= 0.0) continue;
+    if (field("50%") < 0.0 || field("99%") < 0.0 || field("cnt") <= 0.0) continue;
     out.p50_us.push_back(field("50%"));
     out.p90_us.push_back(field("90%"));
     out.p99_us.push_back(field("99%"));
     out.max_us.push_back(field("max"));
-    if (out.max_us.size() == 1) out.first_window_count = static_cast<std::uint64_t>(field("cnt"));
-    out.count += static_cast<std::uint64_t>(field("cnt"));
+    out.round_trips.push_back(field("cnt"));
   }
   std::remove(ping_out.c_str());
   std::remove(config_path.c_str());
   // The first window includes discovery; it is not steady state.
   if (out.p99_us.size() > 1) {
-    for (auto* v : {&out.p50_us, &out.p90_us, &out.p99_us, &out.max_us}) v->erase(v->begin());
-    out.count -= out.first_window_count;
+    for (auto* v : {&out.p50_us, &out.p90_us, &out.p99_us, &out.max_us, &out.round_trips}) {
+      v->erase(v->begin());
+    }
   }
   if (out.p99_us.empty())
     return Error{ErrorCode::kIo, "ddsperf reported no latency (is cyclonedds-tools installed?)"};
@@ -245,21 +251,20 @@ int run_bench_dds(const BenchDdsOptions& o) {
       "  p50 %.1f us, p90 %.1f us, p99 %.1f us, max %.1f us\n"
       "ddsperf ping-pong one-way (%llu round trips, %zu bytes, %u Hz):\n"
       "  medians of its per-second windows: p50 %.1f us, p90 %.1f us, p99 %.1f us\n"
-      "  pooled p99 at least %.1f us (rank %.0f of its per-second maxima, largest first); max %.1f "
+      "  pooled p99 at least %.1f us (rank %zu of its per-second maxima, largest first); max %.1f "
       "us\n"
       "p99 ratio planner / ddsperf, pooled: at most %.2f (target <= 1.5)\n",
       static_cast<unsigned long long>(ours->plans), payload, us(ours->latency.percentile(0.5)),
       us(ours->latency.percentile(0.9)), our_p99, us(ours->latency.max()),
-      static_cast<unsigned long long>(ddsperf->count), payload, rate_hz, median(ddsperf->p50_us),
-      median(ddsperf->p90_us), median(ddsperf->p99_us), their_p99,
-      std::max(1.0, std::ceil(0.01 * static_cast<double>(ddsperf->count))),
+      static_cast<unsigned long long>(ddsperf->count()), payload, rate_hz, median(ddsperf->p50_us),
+      median(ddsperf->p90_us), median(ddsperf->p99_us), their_p99, ddsperf->pooled_p99_rank(),
       *std::max_element(ddsperf->max_us.begin(), ddsperf->max_us.end()), our_p99 / their_p99);
   if (!o.json.empty()) {
     nlohmann::json j;
     j["planner"] = summary_us(ours->latency);
     j["planner"]["mean_plan_bytes"] = ours->mean_plan_bytes;
     j["ddsperf"] = {{"payload_bytes", payload},
-                    {"round_trips", ddsperf->count},
+                    {"round_trips", ddsperf->count()},
                     {"p50_us_median", median(ddsperf->p50_us)},
                     {"p90_us_median", median(ddsperf->p90_us)},
                     {"rate_hz", rate_hz},

@@ -595,16 +595,20 @@ void Planner<V>::rescore_tree(TreeState known_solution) noexcept {
         if (!in_goal_region(earlier)) break;
         --k;
       }
-      const auto index = static_cast<std::uint16_t>(k);
-      if (!solved() || tree_.step_of(e, index) < tree_.step_of(solution_.edge, solution_.index)) {
-        solution_ = TreeState{e, index};
-      }
+      offer_solution(TreeState{e, static_cast<std::uint16_t>(k)});
       break;
     }
   }
-  if (const TreeState s = kept_goal_state(known_solution);
-      s.edge != kNoHandle && (!solved() || tree_.step_of(s.edge, s.index) <
-                                               tree_.step_of(solution_.edge, solution_.index))) {
+  if (const TreeState s = kept_goal_state(known_solution); s.edge != kNoHandle) {
+    offer_solution(s);
+  }
+}
+
+template <VehicleModel V>
+void Planner<V>::offer_solution(TreeState s) noexcept {
+  // A goal state becomes the solution when there is none or it is reached sooner.
+  const TreeState current = resolve(solution_);
+  if (!solved() || tree_.step_of(s.edge, s.index) < tree_.step_of(current.edge, current.index)) {
     solution_ = s;
   }
 }
@@ -757,13 +761,7 @@ EdgeHandle Planner<V>::expand_from(TreeState from) noexcept {
   }
   // A later path to the goal replaces the solution when it gets there sooner (replanning
   // keeps growing the tree to improve the committed trajectory).
-  if (p.goal_index != 0) {
-    const TreeState current = resolve(solution_);
-    if (!solved() ||
-        tree_.step_of(added, p.goal_index) < tree_.step_of(current.edge, current.index)) {
-      solution_ = TreeState{added, p.goal_index};
-    }
-  }
+  if (p.goal_index != 0) offer_solution(TreeState{added, p.goal_index});
   return added;
 }
 

@@ -236,6 +236,7 @@ class Planner {
   void prune_and_order(EdgeHandle root, std::uint32_t shift, bool map_changed,
                        const CellBox* newly_blocked, TreeState known_solution) noexcept;
   TreeState kept_goal_state(TreeState s) const noexcept;
+  void offer_solution(TreeState s) noexcept;
   void rescore_tree(TreeState known_solution) noexcept;
   void make_room(EdgeHandle root) noexcept;
   TreeState select() noexcept;
