@@ -92,6 +92,14 @@ typename ReplanningCycle<V>::State ReplanningCycle<V>::predicted_state_without_p
 }
 
 template <VehicleModel V>
+typename ReplanningCycle<V>::State ReplanningCycle<V>::next_plan_start() const noexcept {
+  const TreeState next_root =
+      committed_.edge != kNoHandle ? planner_.state_at_step(committed_, cycle_steps_) : TreeState{};
+  if (next_root.edge == kNoHandle) return predicted_state_without_plan();
+  return planner_.tree().edge_state(next_root.edge, next_root.index);
+}
+
+template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
                                      std::int64_t deadline_ns) noexcept {
   return run(now_ns, deadline_ns,

@@ -130,6 +130,21 @@ PlanVerdict PlanExecutor<V>::submit(std::span<const PlanStep> steps, std::int64_
     ++stats_.plans_rejected;
     return verdict;
   }
+  return enqueue(steps, start_time_ns, predicted_start);
+}
+
+template <VehicleModel V>
+PlanVerdict PlanExecutor<V>::submit_brake(std::int64_t start_time_ns) noexcept {
+  if (start_time_ns < now_ns_) {
+    ++stats_.plans_rejected;
+    return PlanVerdict::kStartsInThePast;
+  }
+  return enqueue({}, start_time_ns, std::nullopt);
+}
+
+template <VehicleModel V>
+PlanVerdict PlanExecutor<V>::enqueue(std::span<const PlanStep> steps, std::int64_t start_time_ns,
+                                     const std::optional<State>& predicted_start) noexcept {
   // Queued plans starting at or after this one are superseded (they sit at the queue's tail).
   std::size_t keep = queue_size_;
   while (keep > 0 && slots_[queue_[keep - 1]].start_ns >= start_time_ns) --keep;
@@ -168,13 +183,23 @@ template <VehicleModel V>
 void PlanExecutor<V>::abandon_plans() noexcept {
   stats_.plans_superseded += queue_size_;
   queue_size_ = 0;
-  if (mode_ == ExecutorMode::kExecuting) begin_contingency(true);
+  if (mode_ == ExecutorMode::kExecuting) begin_contingency(ContingencyCause::kAbandoned);
 }
 
 template <VehicleModel V>
-void PlanExecutor<V>::begin_contingency(bool abandoned) noexcept {
+void PlanExecutor<V>::begin_contingency(ContingencyCause cause) noexcept {
   ++stats_.contingencies;
-  ++(abandoned ? stats_.plans_abandoned : stats_.plans_ran_out);
+  switch (cause) {
+    case ContingencyCause::kRanOut:
+      ++stats_.plans_ran_out;
+      break;
+    case ContingencyCause::kAbandoned:
+      ++stats_.plans_abandoned;
+      break;
+    case ContingencyCause::kBrakePlan:
+      ++stats_.ended_by_brake_plan;
+      break;
+  }
   mode_ = vehicle_.is_stopped(state_) ? ExecutorMode::kAtRest : ExecutorMode::kBraking;
   if (mode_ == ExecutorMode::kAtRest) control_ = Control::Zero();
 }
@@ -186,6 +211,11 @@ void PlanExecutor<V>::start_queued_plan() noexcept {
             queue_.begin());
   --queue_size_;
   const PlanSlot& slot = slots_[slot_index];
+  if (slot.steps.empty()) {
+    // A brake plan: the plan being executed ends here; an idle or braking vehicle carries on.
+    if (mode_ == ExecutorMode::kExecuting) begin_contingency(ContingencyCause::kBrakePlan);
+    return;
+  }
   bool mismatch = false;
   if (slot.predicted_start) {
     const State& p = *slot.predicted_start;
@@ -210,7 +240,7 @@ void PlanExecutor<V>::start_queued_plan() noexcept {
     // Its controls would drive the vehicle where nobody checked: brake instead.
     stats_.plans_superseded += queue_size_;
     queue_size_ = 0;
-    begin_contingency(true);
+    begin_contingency(ContingencyCause::kAbandoned);
   }
 }
 
@@ -218,6 +248,12 @@ template <VehicleModel V>
 void PlanExecutor<V>::integrate(std::int64_t until_ns) noexcept {
   while (now_ns_ < until_ns) {
     if (queue_size_ > 0 && slots_[queue_[0]].start_ns <= now_ns_) start_queued_plan();
+    // The plan ended when the last sub-step did, and nothing was due then. Its successor may
+    // still have come at that very instant (submitted between ticks, starting exactly on
+    // time), so the contingency begins only now that the vehicle moves on without one.
+    if (mode_ == ExecutorMode::kExecuting && piece_ == slots_[current_].steps.size()) {
+      begin_contingency(ContingencyCause::kRanOut);
+    }
     std::int64_t end = until_ns;
     if (queue_size_ > 0) end = std::min(end, slots_[queue_[0]].start_ns);
     if (mode_ == ExecutorMode::kExecuting) end = std::min(end, slots_[current_].end_ns[piece_]);
@@ -244,9 +280,6 @@ void PlanExecutor<V>::integrate(std::int64_t until_ns) noexcept {
     now_ns_ = end;
     if (mode_ == ExecutorMode::kExecuting && now_ns_ >= slots_[current_].end_ns[piece_]) {
       ++piece_;
-      const bool ran_out = piece_ == slots_[current_].steps.size();
-      const bool successor_due = queue_size_ > 0 && slots_[queue_[0]].start_ns <= now_ns_;
-      if (ran_out && !successor_due) begin_contingency(false);
     }
   }
 }

@@ -53,14 +53,18 @@ TEST_F(DdVelocityExecutorTest, DrivingStraightAtOneMetrePerSecondForTwoSecondsEn
   EXPECT_NEAR(executor.state()[1], 1.0, 1e-12);
   EXPECT_NEAR(executor.state()[2], 0.0, 1e-12);
   EXPECT_NEAR(executor.stats().distance_m, 2.0, 1e-12);
-  // The plan ran out: the (trivial) contingency stopped the robot.
+  // The plan just ended; a successor starting now could still come.
+  EXPECT_EQ(executor.stats().contingencies, 0U);
+  executor.step();
+  // None came: the (trivial) contingency stopped the robot where the plan ended.
   EXPECT_EQ(executor.mode(), ExecutorMode::kAtRest);
   EXPECT_EQ(executor.stats().contingencies, 1U);
   EXPECT_EQ(executor.stats().plans_ran_out, 1U);
   EXPECT_DOUBLE_EQ(executor.speed_m_s(), 0.0);
-  // 39 ticks at 1 m/s and the last at rest, over a 3 m/s maximum.
-  EXPECT_NEAR(executor.mean_speed_fraction(), 39.0 / 40.0 / 3.0, 1e-12);
-  ASSERT_EQ(executor.speed_samples().size(), 40U);
+  EXPECT_NEAR(executor.state()[0], 3.0, 1e-12);
+  // 40 ticks at 1 m/s and one at rest, over a 3 m/s maximum.
+  EXPECT_NEAR(executor.mean_speed_fraction(), 40.0 / 41.0 / 3.0, 1e-12);
+  ASSERT_EQ(executor.speed_samples().size(), 41U);
   EXPECT_EQ(executor.speed_samples()[0].time_ns, kSecond / 20);
   EXPECT_DOUBLE_EQ(executor.speed_samples()[0].speed_m_s, 1.0);
   executor.run_until(3 * kSecond);
@@ -101,6 +105,36 @@ TEST_F(DdVelocityExecutorTest, APlanStartingWhenThePreviousEndsContinuesWithoutA
   EXPECT_EQ(executor.stats().contingencies, 0U);
   EXPECT_EQ(executor.mode(), ExecutorMode::kExecuting);
   EXPECT_NEAR(executor.state()[0], 1.0 + 1.0 + 1.0, 1e-12);
+}
+
+TEST_F(DdVelocityExecutorTest, APlanSubmittedAtTheInstantThePreviousEndedTakesOverOnTime) {
+  // A controller reads plans between ticks: the successor of a plan that ended with the last
+  // tick, starting exactly then, is on time.
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 1.0)}, 0),
+            PlanVerdict::kAccepted);
+  executor.run_until(kSecond);
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(2.0, 2.0, 1.0)}, kSecond),
+            PlanVerdict::kAccepted);
+  executor.run_until(kSecond * 3 / 2);
+  EXPECT_EQ(executor.stats().contingencies, 0U);
+  EXPECT_EQ(executor.stats().plans_started, 2U);
+  EXPECT_NEAR(executor.state()[0], 1.0 + 1.0 + 1.0, 1e-12);
+}
+
+TEST_F(DdVelocityExecutorTest, ABrakePlanEndsTheExecutedPlanAtItsStartAndALaterPlanStillRuns) {
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 3.0)}, 0),
+            PlanVerdict::kAccepted);
+  ASSERT_EQ(executor.submit_brake(kSecond), PlanVerdict::kAccepted);
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(0.5, 0.5, 1.0)}, 2 * kSecond),
+            PlanVerdict::kAccepted);
+  executor.run_until(kSecond * 3 / 2);
+  EXPECT_EQ(executor.mode(), ExecutorMode::kAtRest);
+  EXPECT_EQ(executor.stats().ended_by_brake_plan, 1U);
+  EXPECT_NEAR(executor.state()[0], 2.0, 1e-12);  // stopped where the brake plan started
+  executor.run_until(3 * kSecond);
+  EXPECT_NEAR(executor.state()[0], 2.5, 1e-12);  // the plan queued behind it ran
+  EXPECT_EQ(executor.stats().plans_started, 2U);
+  EXPECT_EQ(executor.submit_brake(kSecond), PlanVerdict::kStartsInThePast);
 }
 
 TEST_F(DdVelocityExecutorTest, ALaterSubmittedPlanSupersedesQueuedPlansStartingAtOrAfterIt) {

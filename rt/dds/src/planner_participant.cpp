@@ -208,6 +208,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   Status start_up();
   Status create_cycle(double time_scale, bool explore);
   void choose_frontier_target(bool map_changed) noexcept;
+  void note_vehicle_state(const StateSample& measured) noexcept;
   void check_vehicle_follows(const StateSample& measured) noexcept;
   PlannerParticipantReport final_report(PlannerParticipantReport report) const;
   std::string progress_line(const PlannerParticipantReport& report) const;
@@ -588,8 +589,10 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
   const std::int64_t start = platform::now_ns();
   CellBox newly_blocked;
   const bool map_changed = apply_tiles(newly_blocked);
-  if (states_->update()) check_vehicle_follows(states_->read_buffer());
+  const bool new_state = states_->update();
+  if (new_state) note_vehicle_state(states_->read_buffer());
   chain_plan_start(release_ns);
+  if (new_state) check_vehicle_follows(states_->read_buffer());
   return plan_cycle(start, map_changed, newly_blocked, deadline_ns);
 }
 
@@ -686,22 +689,36 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, bool map_c
 }
 
 template <VehicleModel V>
-void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured) noexcept {
+void PlannerParticipantFor<V>::note_vehicle_state(const StateSample& measured) noexcept {
   state_sequence_ = measured.sequence_number;
   last_state_stamp_ns_ = measured.stamp_ns;
-  // By this stamp the vehicle should be executing a plan. It is not, and it stands still: it
-  // braked (a plan arrived late or did not start where it was), so it is not where the tree
-  // puts it. Plan again from where it stands; it stays there until the next plan starts.
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured) noexcept {
+  // By this stamp the vehicle should be executing a plan. It is not: it brakes or rests on its
+  // contingency (a plan arrived late, or did not start where it was), and will go on doing so
+  // until the next plan starts, at plan_start_ns_. Braking is deterministic, so where it will
+  // be then is known now: when that is not where the tree puts the next plan's start, plan
+  // from there at once rather than waiting seconds for it to stop.
   const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
   if (measured.plan_cycle != 0 || chain_start_ns_ == 0 ||
-      measured.stamp_ns < chain_start_ns_ + cycle_ns) {
+      measured.stamp_ns < chain_start_ns_ + cycle_ns || measured.stamp_ns > plan_start_ns_) {
     return;
   }
-  const State q = state_of(measured);
-  const State& root = cycle_->plan_start();
-  const double off_m = std::hypot(state_x(q) - state_x(root), state_y(q) - state_y(root));
-  const double off_rad = std::abs(wrap_angle(state_theta(q) - state_theta(root)));
-  if (vehicle_.is_stopped(q) && (off_m > 0.02 || off_rad > 0.02)) {
+  const double step_s = cycle_->planner().config().integration_step_s;
+  const auto brake_steps = static_cast<std::uint64_t>(
+      std::llround(static_cast<double>(plan_start_ns_ - measured.stamp_ns) * 1e-9 / step_s));
+  State q = state_of(measured);
+  for (std::uint64_t i = 0; i < brake_steps && !vehicle_.is_stopped(q); ++i) {
+    q = vehicle_.brake_step(q, step_s);
+  }
+  // A controller refuses a plan whose start differs from its state by more than a rounding
+  // error (sim/plan_executor.hpp), in any component: pose, and a second-order model's speeds.
+  constexpr double kStartTolerance = 1e-6;
+  State off = q - cycle_->next_plan_start();
+  off[2] = wrap_angle(off[2]);
+  if (off.template lpNorm<Eigen::Infinity>() > kStartTolerance) {
     cycle_->resynchronise(q);
     chain_start_ns_ = 0;  // the next plan starts a new chain
     ++resyncs_;
@@ -1030,8 +1047,9 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
       static_cast<void>(lockstep_inputs_.wait(std::chrono::milliseconds(50)));
       map_changed = apply_tiles(newly_blocked) || map_changed;
     }
-    check_vehicle_follows(state);
+    note_vehicle_state(state);
     plan_start_ns_ = state.stamp_ns + cycle_ns;  // t[i] = the state's time + T
+    check_vehicle_follows(state);
     plan_cycle(start, map_changed, newly_blocked, 0);
     ++report.cycles;
     report.compute.record(platform::now_ns() - start);

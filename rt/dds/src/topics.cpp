@@ -18,8 +18,8 @@ platform::dds::Qos keep_last(const LinkTiming& timing, std::int32_t depth) {
 // The periodic links: a peer silent for two cycles is late (DEADLINE_MISSED on both sides).
 // An offered deadline must not exceed the requested one, so a slowed-down simulation
 // (time scale < 1) offers 2 T too.
-platform::dds::Qos periodic(const LinkTiming& timing, Endpoint side) {
-  platform::dds::Qos qos = keep_last(timing, 1);
+platform::dds::Qos periodic(const LinkTiming& timing, Endpoint side, std::int32_t depth) {
+  platform::dds::Qos qos = keep_last(timing, depth);
   const auto two_cycles = 2 * timing.cycle;
   qos.deadline =
       side == Endpoint::kReader
@@ -32,10 +32,10 @@ platform::dds::Qos periodic(const LinkTiming& timing, Endpoint side) {
 }  // namespace
 
 platform::dds::Qos vehicle_state_qos(const LinkTiming& timing, Endpoint side) {
-  return periodic(timing, side);
+  return periodic(timing, side, 1);
 }
 platform::dds::Qos plan_qos(const LinkTiming& timing, Endpoint side) {
-  return periodic(timing, side);
+  return periodic(timing, side, kPlanHistoryDepth);
 }
 platform::dds::Qos map_update_qos(const LinkTiming& timing) { return keep_last(timing, 64); }
 platform::dds::Qos map_request_qos(const LinkTiming& timing) { return keep_last(timing, 4); }

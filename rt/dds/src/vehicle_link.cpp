@@ -64,7 +64,8 @@ VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
       waitset_(std::move(waitset)),
       status_waitset_(std::move(status_waitset)),
       sender_(std::move(map)),
-      plan_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_Plan, 4>>(&grip_msg_Plan_desc)),
+      plan_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_Plan, kPlanHistoryDepth>>(
+          &grip_msg_Plan_desc)),
       request_buffer_(
           std::make_unique<pdds::SampleBuffer<grip_msg_MapRequest, 8>>(&grip_msg_MapRequest_desc)),
       status_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_PlannerStatus, 4>>(
@@ -119,6 +120,23 @@ const grip_msg_Plan* VehicleLink::take_plan() {
     if (newest != nullptr) break;  // the next take would reuse the buffer under it
   }
   return newest;
+}
+
+std::size_t VehicleLink::take_plans(FunctionRef<void(const grip_msg_Plan&)> visit) {
+  std::size_t visited = 0;
+  for (;;) {
+    const Result<std::size_t> taken = plans_.take(*plan_buffer_);
+    if (!taken.ok() || *taken == 0) break;
+    for (std::size_t i = 0; i < *taken; ++i) {
+      if (check_plan((*plan_buffer_)[i], kind_).ok()) {
+        visit((*plan_buffer_)[i]);
+        ++visited;
+      } else {
+        ++plans_rejected_;
+      }
+    }
+  }
+  return visited;
 }
 
 void VehicleLink::wait_for_plan_or_request(std::chrono::nanoseconds timeout) {

@@ -97,10 +97,13 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   publish_state();
 
   // A plan as the controller takes it: from its start time, from the state it predicts there.
-  std::int64_t brake_at = -1;  // a plan without steps: brake from its start time; -1: none
   const auto submit = [&](const grip_msg_Plan& plan) {
-    if (plan.steps._length == 0) {
-      brake_at = static_cast<std::int64_t>(plan.start_time_ns);
+    const auto start_ns = static_cast<std::int64_t>(plan.start_time_ns);
+    if (plan.steps._length == 0) {  // no plan for this cycle: brake from its start time
+      if (executor->submit_brake(start_ns) != PlanVerdict::kAccepted) {
+        ++report.plans_rejected;
+        return;
+      }
       ++report.plans_received;
       ++report.brake_plans;
       return;
@@ -112,14 +115,13 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     }
     State predicted;
     for (int i = 0; i < V::kStateDim; ++i) predicted[i] = plan.start_state[i];
-    const PlanVerdict verdict =
-        executor->submit(steps, static_cast<std::int64_t>(plan.start_time_ns), predicted);
+    const PlanVerdict verdict = executor->submit(steps, start_ns, predicted);
     if (verdict != PlanVerdict::kAccepted) {
       ++report.plans_rejected;
       return;
     }
     ++report.plans_received;
-    accepted.push_back({static_cast<std::int64_t>(plan.start_time_ns), plan.cycle});
+    accepted.push_back({start_ns, plan.cycle});
   };
   double best_coverage = coverage_of(sensed, *reachable);
   double coverage_gained_at = 0.0;
@@ -131,10 +133,6 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   // One integration step of the vehicle: plans take effect, it moves, senses, is recorded.
   const auto advance = [&] {
     ++tick;
-    if (brake_at >= 0 && executor->now_ns() >= brake_at) {
-      executor->abandon_plans();
-      brake_at = -1;
-    }
     executor->step();
     sense();
     const State& q = executor->state();
@@ -247,12 +245,12 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       }
       platform::sleep_until_ns(wall_of_tick(tick + 1));
       advance();
+      // Every plan, oldest first: after a late wake-up two may be waiting, and the first
+      // governs until the second starts. Taken before the state is published, so that the
+      // state names the plan that governs from now on.
+      if ((*link)->take_plans(submit) > 0) planner_seen = true;
       publish_state();
       (*link)->answer_map_requests(static_cast<std::uint64_t>(executor->now_ns()));
-      if (const grip_msg_Plan* plan = (*link)->take_plan()) {
-        submit(*plan);
-        planner_seen = true;
-      }
       if (auto s = (*link)->take_status()) status = s;
       watch_planner();
       show_progress();

@@ -109,19 +109,19 @@ TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
       link.publish_map_updates(CellBox{x, 250, x, 250}, static_cast<std::uint64_t>(tick),
                                drop_every_third);
     }
-    if (const grip_msg_Plan* plan = link.take_plan()) {
-      cycles.push_back(plan->cycle);
-      start_times.push_back(plan->start_time_ns);
+    link.take_plans([&](const grip_msg_Plan& plan) {
+      cycles.push_back(plan.cycle);
+      start_times.push_back(plan.start_time_ns);
       double duration = 0.0;
-      for (std::uint32_t i = 0; i < plan->steps._length; ++i)
-        duration += plan->steps._buffer[i].duration_s;
+      for (std::uint32_t i = 0; i < plan.steps._length; ++i)
+        duration += plan.steps._buffer[i].duration_s;
       // A plan covers at least the next cycle, or has no steps: brake from its start.
-      if (plan->steps._length > 0) {
+      if (plan.steps._length > 0) {
         EXPECT_GE(duration, 0.05 - 1e-9) << "a plan covers at least the next cycle";
         ++moving_plans;
       }
-      EXPECT_EQ(plan->kind, grip_msg_DD_VELOCITY);
-    }
+      EXPECT_EQ(plan.kind, grip_msg_DD_VELOCITY);
+    });
     if (auto s = link.take_status()) status = s;
     std::this_thread::sleep_for(10ms);
   }
@@ -271,6 +271,65 @@ TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
   EXPECT_EQ(result->rejected_vehicle_state, 7U);
   EXPECT_EQ(result->rejected_map_update, 5U);
   EXPECT_EQ(result->rejected_goal, 3U);
+}
+
+TEST(PlannerParticipant, AVehicleBrakingOffItsPlansIsPlannedForFromWhereBrakingTakesIt) {
+  // The controller reports that it follows no plan (it brakes on its contingency, say after a
+  // plan came late) while moving at 1 m/s: the planner must plan the next cycle from where
+  // braking puts the vehicle at that plan's start, not from where its tree says.
+  constexpr platform::dds::DomainId kDomain = 73;
+  auto vehicle = VehicleSide::create(kDomain, VehicleKind::kDdAcceleration);
+  ASSERT_NE(vehicle, nullptr);
+  ASSERT_TRUE(vehicle->publish_goal());
+  PlannerParticipantConfig config = planner_config(kDomain, 0.0);
+  config.robot = VehicleKind::kDdAcceleration;
+  RunningPlanner planner(config);
+  ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
+  VehicleLink& link = vehicle->link();
+  // First it claims to follow the plans (it does not move, but the planner cannot tell).
+  std::size_t plans = 0;
+  std::uint64_t last_cycle = 0;
+  const auto count_plans = [&] {
+    link.take_plans([&](const grip_msg_Plan& plan) {
+      ++plans;
+      last_cycle = plan.cycle;
+    });
+    vehicle->service(last_cycle);
+    return plans >= 5;
+  };
+  ASSERT_TRUE(eventually(count_plans, 20000ms)) << "no plans came";
+
+  grip_msg_VehicleState braking = vehicle->state();
+  braking.state[3] = 1.0;  // both wheels at 1 m/s: driving straight on
+  braking.state[4] = 1.0;
+  braking.plan_cycle = 0;  // executing no plan
+  ASSERT_TRUE(link.publish_state(braking).ok());
+  std::optional<grip_msg_Plan> replanned;
+  const auto find_replanned = [&] {
+    link.take_plans([&](const grip_msg_Plan& plan) {
+      if (!replanned && plan.state_sequence == braking.sequence_number) replanned = plan;
+    });
+    return replanned.has_value();
+  };
+  ASSERT_TRUE(eventually(find_replanned, 5000ms)) << "no plan answered the braking state";
+  planner.planner->request_stop();
+  const Result<PlannerParticipantReport>& result = planner.join();
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  EXPECT_EQ(result->resyncs, 1U);
+
+  const DdAcceleration model = DdAcceleration::create(DdAccelerationParams{}).value();
+  ASSERT_GE(replanned->start_time_ns, braking.stamp_ns);
+  const double step_s = 0.05;
+  const auto steps = std::llround(static_cast<double>(replanned->start_time_ns - braking.stamp_ns) *
+                                  1e-9 / step_s);
+  DdAcceleration::State q;
+  for (int i = 0; i < 5; ++i) q[i] = braking.state[i];
+  for (long i = 0; i < steps && !model.is_stopped(q); ++i) q = model.brake_step(q, step_s);
+  EXPECT_GT(std::hypot(q[0] - braking.state[0], q[1] - braking.state[1]), 0.01)
+      << "braking from 1 m/s moves the vehicle on";
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_NEAR(replanned->start_state[i], q[i], 1e-9) << "state component " << i;
+  }
 }
 
 TEST(PlannerParticipant, AKilledControllerIsNoticedThroughLiveliness) {

@@ -36,8 +36,10 @@ class VehicleSide {
     msg.time_scale = 1.0;
     return msg;
   }
-  bool publish_state() {
-    const grip_msg_VehicleState msg = state();
+  // plan_cycle: the plan the vehicle claims to execute, 0 for none (it rests).
+  bool publish_state(std::uint64_t plan_cycle = 0) {
+    grip_msg_VehicleState msg = state();
+    msg.plan_cycle = plan_cycle;
     state_sequence_ = msg.sequence_number;
     return link_->publish_state(msg).ok();
   }
@@ -51,8 +53,8 @@ class VehicleSide {
     return link_->publish_goal(goal).ok();
   }
   // Periodic duties: the state, and snapshots for whoever asked.
-  void service() {
-    publish_state();
+  void service(std::uint64_t plan_cycle = 0) {
+    publish_state(plan_cycle);
     link_->answer_map_requests(static_cast<std::uint64_t>(platform::now_ns()));
   }
 

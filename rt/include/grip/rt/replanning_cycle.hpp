@@ -80,9 +80,12 @@ class ReplanningCycle {
     blocked_noted_ = true;
   }
 
-  // The vehicle is not where the plans put it (it stopped on its contingency): the next cycle
-  // starts a fresh tree at q, the state the vehicle will hold at the next cycle's start.
+  // The vehicle is not where the plans put it (it brakes or rests on its contingency): the
+  // next cycle starts a fresh tree at q, the state the vehicle will hold at its start.
   void resynchronise(const State& q) noexcept { resync_ = q; }
+  // Where the next cycle's plan starts if the vehicle follows the committed plan: T along it,
+  // or, when it is shorter than T or there is none, where braking at its end leads.
+  State next_plan_start() const noexcept;
 
   // Runs one cycle, growing the tree until now_ns() >= deadline_ns - safety margin.
   CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns) noexcept;

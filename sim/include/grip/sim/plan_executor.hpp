@@ -10,7 +10,8 @@
 // a plan start that falls inside a tick splits the tick there (the model integrates both parts),
 // so no switch is ever early or late.
 //
-// Plans: submit() queues a plan that starts at its start time (not before the current time).
+// Plans: submit() queues a plan that starts at its start time (not before the current time);
+// submit_brake() queues a brake plan, which ends the executed plan at its start time.
 // The most recent plan governs from its start time on: a submitted plan replaces every queued
 // plan starting at or after it, and at its start time it replaces the plan being executed.
 // When the executed plan runs out with nothing queued, or abandon_plans() is called (the
@@ -67,7 +68,7 @@ std::string_view plan_verdict_name(PlanVerdict v) noexcept;
 
 enum class ExecutorMode : std::uint8_t {
   kAtRest,     // no plan: stopped (initially, and after a contingency completed)
-  kExecuting,  // following a plan
+  kExecuting,  // following a plan (until a tick begins after its last piece ended)
   kBraking,    // performing the contingency maneuver
 };
 std::string_view executor_mode_name(ExecutorMode m) noexcept;
@@ -88,9 +89,10 @@ struct ExecutorStats {
   std::uint64_t ticks = 0;
   std::uint64_t collisions = 0;  // collision events (entering collision)
   std::uint64_t ticks_in_collision = 0;
-  std::uint64_t contingencies = 0;    // switches from a plan to the braking contingency
-  std::uint64_t plans_ran_out = 0;    // ... because the plan ended with nothing queued
-  std::uint64_t plans_abandoned = 0;  // ... because abandon_plans() was called
+  std::uint64_t contingencies = 0;        // switches from a plan to the braking contingency
+  std::uint64_t plans_ran_out = 0;        // ... because the plan ended with nothing queued
+  std::uint64_t plans_abandoned = 0;      // ... because abandon_plans() was called
+  std::uint64_t ended_by_brake_plan = 0;  // ... because a brake plan started
   std::uint64_t plans_accepted = 0;
   std::uint64_t plans_rejected = 0;
   std::uint64_t plans_started = 0;
@@ -123,6 +125,11 @@ class PlanExecutor {
   // recorded in stats() (it does not change what is executed).
   PlanVerdict submit(std::span<const PlanStep> steps, std::int64_t start_time_ns,
                      const std::optional<State>& predicted_start = std::nullopt) noexcept;
+
+  // A brake plan (the planner had no plan for a cycle): from start_time_ns on, the plan being
+  // executed is dropped and the vehicle brakes, until a plan queued after it starts. Queued
+  // like a plan (it supersedes those starting at or after it); kStartsInThePast, kQueueFull.
+  PlanVerdict submit_brake(std::int64_t start_time_ns) noexcept;
 
   // The planner is silent past its lease: drops the executed and queued plans and brakes.
   void abandon_plans() noexcept;
@@ -162,8 +169,12 @@ class PlanExecutor {
   PlanExecutor(const V& vehicle, CollisionChecker checker, const State& start,
                std::int64_t start_time_ns, const ExecutorConfig& config);
 
+  enum class ContingencyCause : std::uint8_t { kRanOut, kAbandoned, kBrakePlan };
+
+  PlanVerdict enqueue(std::span<const PlanStep> steps, std::int64_t start_time_ns,
+                      const std::optional<State>& predicted_start) noexcept;
   void start_queued_plan() noexcept;
-  void begin_contingency(bool abandoned) noexcept;
+  void begin_contingency(ContingencyCause cause) noexcept;
   void integrate(std::int64_t until_ns) noexcept;
   void after_tick() noexcept;
 

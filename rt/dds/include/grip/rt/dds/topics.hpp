@@ -3,10 +3,14 @@
 // the simulator, tests and tools), so that both ends of a link always match.
 //
 // Chosen for a control link (documented in README "DDS contract"):
-//   vehicle state, plan: RELIABLE, KEEP_LAST 1. Only the newest state or plan matters, and a
-//     reliable keep-last writer never blocks on a slow reader (the newest sample replaces the
-//     one not yet acknowledged), yet nothing is lost on a healthy link, which lockstep
-//     simulation relies on. DEADLINE: writers offer 2 T / time scale, readers request 2 T.
+//   vehicle state: RELIABLE, KEEP_LAST 1. Only the newest state matters, and a reliable
+//     keep-last writer never blocks on a slow reader (the newest sample replaces the one not
+//     yet acknowledged), yet nothing is lost on a healthy link, which lockstep simulation
+//     relies on. DEADLINE: writers offer 2 T / time scale, readers request 2 T.
+//   plan: the same with KEEP_LAST 4 (kPlanHistoryDepth). Plans are a chain: each starts where
+//     the one before puts the vehicle at its start time, and governs only until the next one
+//     starts. A controller that reads two plans at once (it was descheduled for a cycle) must
+//     execute both, or the second starts from a state the vehicle never reaches.
 //   map update: RELIABLE, KEEP_LAST 64: depth for bursts (a snapshot of a 1000 x 1000 map is 16
 //     parts); anything lost anyway is a gap in the sequence numbers, healed by a snapshot.
 //   map request: RELIABLE, KEEP_LAST 4.
@@ -16,6 +20,7 @@
 //   within about one lease; max_blocking_time 10 ms (only keep-last-64 map updates can block).
 
 #include <chrono>
+#include <cstdint>
 
 #include "grip/platform/dds/qos.hpp"
 
@@ -23,6 +28,8 @@ namespace grip::rt::dds {
 
 inline constexpr const char* kVehicleStateTopic = "grip_vehicle_state";
 inline constexpr const char* kPlanTopic = "grip_plan";
+// Plans a reader holds: a controller may fall this many cycles behind and still run each one.
+inline constexpr std::int32_t kPlanHistoryDepth = 4;
 inline constexpr const char* kMapUpdateTopic = "grip_map_update";
 inline constexpr const char* kMapRequestTopic = "grip_map_request";
 inline constexpr const char* kGoalTopic = "grip_goal";

@@ -48,7 +48,12 @@ class VehicleLink {
   void answer_map_requests(std::uint64_t stamp_ns);
 
   // The newest valid plan received since the last call, if any; invalid plans are counted.
+  // For a reader that wants only the latest (lockstep waits for the plan of its last state).
   const grip_msg_Plan* take_plan();
+  // Every valid plan received since the last call, oldest first (invalid ones are counted), for
+  // a controller: each plan governs from its start until the next one starts, so none may be
+  // skipped. Returns how many were visited.
+  std::size_t take_plans(FunctionRef<void(const grip_msg_Plan&)> visit);
   // Sleeps until a plan or a map request arrives, or `timeout` passes (whichever first).
   void wait_for_plan_or_request(std::chrono::nanoseconds timeout);
   std::optional<grip_msg_PlannerStatus> take_status();
@@ -89,7 +94,7 @@ class VehicleLink {
   platform::dds::WaitSet waitset_;         // plans and map requests
   platform::dds::WaitSet status_waitset_;  // the planner's status
   MapSender sender_;
-  std::unique_ptr<platform::dds::SampleBuffer<grip_msg_Plan, 4>> plan_buffer_;
+  std::unique_ptr<platform::dds::SampleBuffer<grip_msg_Plan, kPlanHistoryDepth>> plan_buffer_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_MapRequest, 8>> request_buffer_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_PlannerStatus, 4>> status_buffer_;
   std::uint64_t plans_rejected_ = 0;
