@@ -92,11 +92,22 @@ typename ReplanningCycle<V>::State ReplanningCycle<V>::predicted_state_without_p
 }
 
 template <VehicleModel V>
+TreeState ReplanningCycle<V>::next_root() const noexcept {
+  if (committed_.edge != kNoHandle) return planner_.state_at_step(committed_, cycle_steps_);
+  // No plan: the vehicle brakes from the root, and once it rests there the next plan starts
+  // where the tree does. Growing that tree on beats restarting it every cycle: a vehicle that
+  // needs more than one cycle's growth to find a safe plan (a car close to a wall) would
+  // otherwise never move again.
+  const TreeState root = planner_.root_state();
+  if (root.edge != kNoHandle && planner_.vehicle().is_stopped(plan_start())) return root;
+  return TreeState{};
+}
+
+template <VehicleModel V>
 typename ReplanningCycle<V>::State ReplanningCycle<V>::next_plan_start() const noexcept {
-  const TreeState next_root =
-      committed_.edge != kNoHandle ? planner_.state_at_step(committed_, cycle_steps_) : TreeState{};
-  if (next_root.edge == kNoHandle) return predicted_state_without_plan();
-  return planner_.tree().edge_state(next_root.edge, next_root.index);
+  const TreeState root = next_root();
+  if (root.edge == kNoHandle) return predicted_state_without_plan();
+  return planner_.tree().edge_state(root.edge, root.index);
 }
 
 template <VehicleModel V>
@@ -135,10 +146,9 @@ CycleOutcome ReplanningCycle<V>::run_growing(
     FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
   CycleOutcome out;
   const std::int64_t cycle_start = now_ns();
-  // 1. The new root: T along the committed plan, when the plan covers T.
-  const TreeState next_root = committed_.edge != kNoHandle && !resync_
-                                  ? planner_.state_at_step(committed_, cycle_steps_)
-                                  : TreeState{};
+  // 1. The new root: T along the committed plan, when the plan covers T (or the root itself,
+  // for a vehicle resting there without a plan).
+  const TreeState next_root = resync_ ? TreeState{} : this->next_root();
   const RhoUpdate rho = goal_changed_ || cycles_since_rho_ + 1 >= config_.rho_refresh_cycles
                             ? RhoUpdate::kRecompute
                             : RhoUpdate::kKeep;

@@ -132,6 +132,28 @@ TEST_F(ReplanningCycleTest, RhoTowardAnUnchangedTargetIsRecomputedEveryRefreshCy
   EXPECT_EQ(rho.source_revision(), scene.grid.revision());
 }
 
+TEST_F(ReplanningCycleTest, AVehicleRestingWithoutAPlanKeepsGrowingTheSameTree) {
+  // Choosing the root commits nothing: the vehicle rests where the tree starts, so each cycle
+  // carries the tree over instead of restarting it and its growth accumulates.
+  const auto root = [](const Planner<Car>& planner) { return planner.root_state(); };
+  const auto racing = [this] { return clock.now += 1'000; };
+  std::uint32_t edges = cycle->planner().tree().edge_count();  // the root
+  for (int i = 0; i < 3; ++i) {
+    const CycleOutcome out = cycle->run_for_edges(racing, 200, root);
+    EXPECT_FALSE(out.committed);
+    EXPECT_FALSE(out.plan_available);
+    EXPECT_FALSE(out.restarted) << "cycle " << i;
+    EXPECT_EQ(out.edges_retained, edges) << "cycle " << i;
+    EXPECT_GT(out.tree_edges, edges);
+    edges = out.tree_edges;
+    EXPECT_EQ(cycle->next_plan_start(), cycle->plan_start());
+  }
+  // A plan, once there is one, starts from that same rest state.
+  const Car::State rest = cycle->plan_start();
+  ASSERT_TRUE(run_cycle().committed);
+  EXPECT_EQ(cycle->plan_start(), rest);
+}
+
 TEST_F(ReplanningCycleTest, EachCycleStartsWhereThePreviousPlanLeadsAfterT) {
   int compared = 0;
   for (int i = 0; i < 30; ++i) {

@@ -34,9 +34,9 @@ struct BenchExploreOptions {
   unsigned seeds = 10;
   std::uint64_t first_seed = 1;
   bool lockstep = false;
-  std::uint32_t lockstep_edges = 1000;
-  double time_scale = 2.0;  // at 4 the planner often runs out of cycle budget on a 2-core machine
-  double max_sim_time_s = 1800.0;  // the car needs up to about 1,000 s on the built-in scenes
+  std::uint32_t lockstep_edges = kDefaultLockstepEdges;
+  double time_scale = kDefaultTimeScale;
+  double max_sim_time_s = kDefaultMaxSimTimeS;
   bool no_safety = false;
   unsigned jobs = 1;
   unsigned domain = 120;  // runs use domain, domain + 1, ... (one per job)

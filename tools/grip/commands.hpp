@@ -2,8 +2,16 @@
 // The subcommands of `grip`. Each registers its options on the CLI11 app and runs when chosen.
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 
 namespace grip::tools {
+
+// Exploration defaults shared by `grip explore`, `grip sim`, `grip planner` and
+// `grip bench explore`.
+inline constexpr double kDefaultTimeScale =
+    2.0;  // at 4 the planner runs short of budget on 2 cores
+inline constexpr double kDefaultMaxSimTimeS = 1800.0;  // the car needs up to about 1,000 s
+inline constexpr std::uint32_t kDefaultLockstepEdges = 1000;
 
 void register_scene_command(CLI::App& app);
 void register_plan_command(CLI::App& app);

@@ -40,11 +40,11 @@ struct ExploreOptions {
   std::string start;
   std::string robot = "dd-vel";
   std::uint64_t seed = 1;
-  double time_scale = 2.0;  // at 4 the planner often runs out of cycle budget on a 2-core machine
-  double max_sim_time_s = 1800.0;  // the car needs up to about 1,000 s on the built-in scenes
+  double time_scale = kDefaultTimeScale;
+  double max_sim_time_s = kDefaultMaxSimTimeS;
   bool no_safety = false;
   bool lockstep = false;
-  std::uint32_t lockstep_edges = 1000;
+  std::uint32_t lockstep_edges = kDefaultLockstepEdges;
   unsigned domain = 0;
   std::string report;
   std::string image;

@@ -28,7 +28,7 @@ struct PlannerOptions {
   double margin_ms = -1.0;
   std::string policy = "auto";
   std::uint32_t max_edges = 0;
-  std::uint32_t lockstep_edges = 1000;
+  std::uint32_t lockstep_edges = kDefaultLockstepEdges;
   double lease_ms = 500.0;
   double duration_s = 0.0;
   double startup_timeout_s = 0.0;

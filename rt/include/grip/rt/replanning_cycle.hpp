@@ -116,6 +116,8 @@ class ReplanningCycle {
   CycleOutcome run_growing(FunctionRef<std::int64_t()> now_ns, FunctionRef<bool()> stop_growing,
                            FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
   State predicted_state_without_plan() const noexcept;
+  // The tree state the next cycle's plan starts from, if the tree has it.
+  TreeState next_root() const noexcept;
   void commit(TreeState s) noexcept;
 
   Planner<V> planner_;
