@@ -169,16 +169,17 @@ CycleOutcome ReplanningCycle<V>::run_growing(
                         : predicted_state_without_plan();
     resync_.reset();
     out.restarted = true;
-    out.retain_status = goal_is_cells_
-                            ? planner_.restart(q, GoalCells{goal_cells_.span()}, config_.cycle_s)
-                            : planner_.restart(q, goal_, config_.cycle_s);
+    // rho as for a retainment: a restart is no reason to recompute it, and the whole-map
+    // wavefront would take the cycle's growth (a vehicle restarted every cycle never moved).
+    out.retain_status =
+        goal_is_cells_ ? planner_.restart(q, GoalCells{goal_cells_.span()}, config_.cycle_s, rho)
+                       : planner_.restart(q, goal_, config_.cycle_s, rho);
     committed_ = TreeState{};
   } else if (!planner_.contains(committed_)) {
     committed_ = TreeState{};  // the new map or T cut the rest of the previous plan
   }
 
-  const bool rho_recomputed = rho == RhoUpdate::kRecompute || out.restarted;
-  cycles_since_rho_ = rho_recomputed ? 0 : cycles_since_rho_ + 1;
+  cycles_since_rho_ = rho == RhoUpdate::kRecompute ? 0 : cycles_since_rho_ + 1;
   goal_changed_ = false;
   newly_blocked_ = CellBox{};
   blocked_noted_ = false;

@@ -126,7 +126,16 @@ Status Planner<V>::set_problem(const State& start, const GoalRegion& goal) {
   where += std::to_string(goal.y_m);
   where += ") radius ";
   where += std::to_string(goal.radius_m);
+  begin_problem();
   return problem_status(restart(start, goal, config_.safety_horizon_s), start, where);
+}
+
+template <VehicleModel V>
+void Planner<V>::begin_problem() noexcept {
+  // A new problem replays the seed's samples and counts work from zero; restart() does not,
+  // or a vehicle restarted in the same state would replay the samples that failed there.
+  rng_.reseed(config_.seed);
+  stats_ = PlannerStats{};
 }
 
 template <VehicleModel V>
@@ -134,6 +143,7 @@ Status Planner<V>::set_problem(const State& start, GoalCells goal) {
   std::string what = "of ";
   what += std::to_string(goal.cells.size());
   what += " cells";
+  begin_problem();
   return problem_status(restart(start, goal, config_.safety_horizon_s), start, what);
 }
 
@@ -163,24 +173,28 @@ Status Planner<V>::problem_status(RetainStatus status, const State& start,
 }
 
 template <VehicleModel V>
-RetainStatus Planner<V>::restart(const State& q, const GoalRegion& goal,
-                                 double horizon_s) noexcept {
-  return restart_towards(q, GoalSpec{&goal, {}}, horizon_s);
+RetainStatus Planner<V>::restart(const State& q, const GoalRegion& goal, double horizon_s,
+                                 RhoUpdate rho) noexcept {
+  return restart_towards(q, GoalSpec{&goal, {}}, horizon_s, rho);
 }
 
 template <VehicleModel V>
-RetainStatus Planner<V>::restart(const State& q, GoalCells goal, double horizon_s) noexcept {
-  return restart_towards(q, GoalSpec{nullptr, goal.cells}, horizon_s);
+RetainStatus Planner<V>::restart(const State& q, GoalCells goal, double horizon_s,
+                                 RhoUpdate rho) noexcept {
+  return restart_towards(q, GoalSpec{nullptr, goal.cells}, horizon_s, rho);
 }
 
 template <VehicleModel V>
-RetainStatus Planner<V>::restart_towards(const State& q, GoalSpec goal, double horizon_s) noexcept {
+RetainStatus Planner<V>::restart_towards(const State& q, GoalSpec goal, double horizon_s,
+                                         RhoUpdate rho) noexcept {
   if (!vehicle_.validate_state(q)) return RetainStatus::kInvalidState;
   if (checker_.stale() || !problem_set_) checker_.refresh();
   if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
     return RetainStatus::kRootInCollision;
   }
-  if (const RetainStatus s = set_goal(goal); s != RetainStatus::kOk) return s;
+  if (rho == RhoUpdate::kRecompute || !problem_set_) {
+    if (const RetainStatus s = set_goal(goal); s != RetainStatus::kOk) return s;
+  }
   set_horizon(horizon_s);
 
   free_cells_.clear();
@@ -195,8 +209,6 @@ RetainStatus Planner<V>::restart_towards(const State& q, GoalSpec goal, double h
       GRIP_ASSERT(cell_state_.push_back(TreeState{}));
     }
   }
-  rng_.reseed(config_.seed);
-  stats_ = PlannerStats{};
   reset_tree(q);
   validated_revision_ = grid_->revision();
   problem_set_ = true;

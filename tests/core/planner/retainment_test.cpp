@@ -188,6 +188,39 @@ TEST_F(RetainmentTest, PrioritiesAreResetByEq2AndScoresUseTheNewTarget) {
   EXPECT_EQ(planner->heap_size(), tree.edge_count());
 }
 
+TEST_F(RetainmentTest, RestartingInTheSameStateDrawsNewSamplesAndKeepsRhoOnRequest) {
+  // A vehicle restarted where it stands, cycle after cycle, must not replay the samples that
+  // failed there: the random stream goes on, and so do the work counters.
+  const auto first_control = [&] {
+    const auto& tree = planner->tree();
+    const EdgeHandle child = tree.edge(tree.root()).first_child;
+    EXPECT_NE(child, kNoHandle);
+    return child == kNoHandle ? std::array<double, 2>{}
+                              : tree.trajectory(tree.edge(child).trajectory).control;
+  };
+  const DdAcceleration::State start = robot.rest_state(2, 2, 0.7);
+  grow(1);
+  const std::array<double, 2> before = first_control();
+  const std::uint64_t edges = planner->stats().edges_added;
+  ASSERT_EQ(planner->restart(start, goal, 1.0, RhoUpdate::kKeep), RetainStatus::kOk);
+  EXPECT_EQ(planner->tree().edge_count(), 1U);
+  grow(1);
+  EXPECT_NE(first_control(), before);
+  EXPECT_EQ(planner->stats().edges_added, edges + 1);
+  // kKeep leaves rho toward the old goal; kRecompute turns it toward the new one.
+  const GoalRegion other{2.0, 11.5, 1.0};
+  const double rho_here = planner->rho_field().distance_m(2.0, 11.5);
+  ASSERT_EQ(planner->restart(start, other, 1.0, RhoUpdate::kKeep), RetainStatus::kOk);
+  EXPECT_DOUBLE_EQ(planner->rho_field().distance_m(2.0, 11.5), rho_here);
+  ASSERT_EQ(planner->restart(start, other, 1.0), RetainStatus::kOk);
+  EXPECT_LT(planner->rho_field().distance_m(2.0, 11.5), 0.2);
+  // A new problem replays the seed: the first sample is the first run's again.
+  ASSERT_TRUE(planner->set_problem(start, goal));
+  EXPECT_EQ(planner->stats().edges_added, 0U);
+  grow(1);
+  EXPECT_EQ(first_control(), before);
+}
+
 TEST_F(RetainmentTest, ThousandsOfCyclesLeakNothing) {
   for (int cycle = 0; cycle < 2000; ++cycle) {
     grow(40);

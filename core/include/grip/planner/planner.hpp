@@ -147,14 +147,19 @@ class Planner {
   RetainStatus retain(TreeState new_root, const GoalRegion& goal, double horizon_s,
                       const CellBox* newly_blocked = nullptr,
                       RhoUpdate rho = RhoUpdate::kRecompute) noexcept;
-  // Starts a fresh tree at q (when q is not on the tree), allocation-free.
-  RetainStatus restart(const State& q, const GoalRegion& goal, double horizon_s) noexcept;
+  // Starts a fresh tree at q (when q is not on the tree), allocation-free. Unlike
+  // set_problem(), the random stream and the work counters go on: restarting in the same
+  // state must not replay the samples that failed there. RhoUpdate as for retain(); the
+  // first call after create() always computes rho.
+  RetainStatus restart(const State& q, const GoalRegion& goal, double horizon_s,
+                       RhoUpdate rho = RhoUpdate::kRecompute) noexcept;
   // retain() and restart() with F as a set of cells (kGoalOutsideGrid for an index outside the
   // grid, kGoalWithoutFreeCell when none is free); the span is read during the call only.
   RetainStatus retain(TreeState new_root, GoalCells goal, double horizon_s,
                       const CellBox* newly_blocked = nullptr,
                       RhoUpdate rho = RhoUpdate::kRecompute) noexcept;
-  RetainStatus restart(const State& q, GoalCells goal, double horizon_s) noexcept;
+  RetainStatus restart(const State& q, GoalCells goal, double horizon_s,
+                       RhoUpdate rho = RhoUpdate::kRecompute) noexcept;
   const RetainStats& last_retain() const noexcept { return retain_stats_; }
 
   // Grows the tree until the goal is reached, should_stop() returns true (checked once per
@@ -226,7 +231,9 @@ class Planner {
 
   bool iterate() noexcept;
   Status problem_status(RetainStatus status, const State& start, const std::string& goal);
-  RetainStatus restart_towards(const State& q, GoalSpec goal, double horizon_s) noexcept;
+  void begin_problem() noexcept;
+  RetainStatus restart_towards(const State& q, GoalSpec goal, double horizon_s,
+                               RhoUpdate rho) noexcept;
   RetainStatus retain_towards(TreeState new_root, GoalSpec goal, double horizon_s,
                               const CellBox* newly_blocked, RhoUpdate rho) noexcept;
   RetainStatus set_goal(GoalSpec goal) noexcept;
