@@ -176,12 +176,14 @@ void print_table(const BenchExploreOptions& o, const std::vector<Row>& rows) {
     short_of_target += met ? 0 : 1;
     std::ostringstream complete;
     complete << r.complete << "/" << r.runs;
-    std::cout << std::left << std::setw(26) << r.world << std::setw(10) << r.robot << std::right
-              << std::setw(9) << complete.str() << std::setw(11) << r.collisions << std::setw(9)
-              << r.collided << std::fixed << std::setprecision(3) << std::setw(10) << r.min_coverage
-              << std::setw(10) << median(r.coverage) << std::setprecision(1) << std::setw(11)
-              << median(r.sim_time) << std::setw(12) << median(r.wall_time) << std::setprecision(2)
-              << std::setw(11) << median(r.speed) << std::setprecision(1) << std::setw(11);
+    // A world name longer than its column still leaves a space before the robot.
+    std::cout << std::left << std::setw(26) << r.world + " " << std::setw(10) << r.robot
+              << std::right << std::setw(9) << complete.str() << std::setw(11) << r.collisions
+              << std::setw(9) << r.collided << std::fixed << std::setprecision(3) << std::setw(10)
+              << r.min_coverage << std::setw(10) << median(r.coverage) << std::setprecision(1)
+              << std::setw(11) << median(r.sim_time) << std::setw(12) << median(r.wall_time)
+              << std::setprecision(2) << std::setw(11) << median(r.speed) << std::setprecision(1)
+              << std::setw(11);
     if (r.first_collision.empty()) {
       std::cout << "-";
     } else {
