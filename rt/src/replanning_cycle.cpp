@@ -84,11 +84,7 @@ typename ReplanningCycle<V>::State ReplanningCycle<V>::predicted_state_without_p
     q = tree.edge_state(end.edge, end.index);
     steps_left -= std::min(steps_left, planned);
   }
-  const V& vehicle = planner_.vehicle();
-  for (std::uint32_t i = 0; i < steps_left; ++i) {
-    q = vehicle.brake_step(q, planner_.config().integration_step_s);
-  }
-  return q;
+  return braked_state(planner_.vehicle(), q, steps_left, planner_.config().integration_step_s);
 }
 
 template <VehicleModel V>
@@ -96,8 +92,7 @@ TreeState ReplanningCycle<V>::next_root() const noexcept {
   if (committed_.edge != kNoHandle) return planner_.state_at_step(committed_, cycle_steps_);
   // No plan: the vehicle brakes from the root, and once it rests there the next plan starts
   // where the tree does. Growing that tree on beats restarting it every cycle: a vehicle that
-  // needs more than one cycle's growth to find a safe plan (a car close to a wall) would
-  // otherwise never move again.
+  // needs more than one cycle's growth to find a safe plan would otherwise never move again.
   const TreeState root = planner_.root_state();
   if (root.edge != kNoHandle && planner_.vehicle().is_stopped(plan_start())) return root;
   return TreeState{};

@@ -15,8 +15,6 @@ namespace {
 constexpr double kNsPerS = 1e9;
 // Longest plan piece accepted, so that sums of 1024 pieces stay far inside int64 nanoseconds.
 constexpr double kMaxPieceDurationS = 1e6;
-// Predicted and actual start states closer than this count as equal [m, rad].
-constexpr double kStartTolerance = 1e-6;
 
 constexpr std::array<NamedValue<PlanVerdict>, 7> kVerdictNames{{
     {PlanVerdict::kAccepted, "accepted"},
@@ -225,8 +223,7 @@ void PlanExecutor<V>::start_queued_plan() noexcept {
     stats_.max_start_position_error_m = std::max(stats_.max_start_position_error_m, position_error);
     stats_.max_start_heading_error_rad =
         std::max(stats_.max_start_heading_error_rad, heading_error);
-    if (position_error > kStartTolerance || heading_error > kStartTolerance ||
-        (state_ - p).template lpNorm<Eigen::Infinity>() > kStartTolerance) {
+    if (!states_match(state_, p)) {
       ++stats_.start_mismatches;
       mismatch = true;
     }

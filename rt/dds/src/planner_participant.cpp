@@ -709,16 +709,9 @@ void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured
   const double step_s = cycle_->planner().config().integration_step_s;
   const auto brake_steps = static_cast<std::uint64_t>(
       std::llround(static_cast<double>(plan_start_ns_ - measured.stamp_ns) * 1e-9 / step_s));
-  State q = state_of(measured);
-  for (std::uint64_t i = 0; i < brake_steps && !vehicle_.is_stopped(q); ++i) {
-    q = vehicle_.brake_step(q, step_s);
-  }
-  // A controller refuses a plan whose start differs from its state by more than a rounding
-  // error (sim/plan_executor.hpp), in any component: pose, and a second-order model's speeds.
-  constexpr double kStartTolerance = 1e-6;
-  State off = q - cycle_->next_plan_start();
-  off[2] = wrap_angle(off[2]);
-  if (off.template lpNorm<Eigen::Infinity>() > kStartTolerance) {
+  const State q = braked_state(vehicle_, state_of(measured), brake_steps, step_s);
+  // A controller refuses a plan that does not start where the vehicle is (states_match).
+  if (!states_match(q, cycle_->next_plan_start())) {
     cycle_->resynchronise(q);
     chain_start_ns_ = 0;  // the next plan starts a new chain
     ++resyncs_;

@@ -26,4 +26,13 @@ bool contingency_is_collision_free(const V& vehicle, const CollisionChecker& che
   return vehicle.is_stopped(q);
 }
 
+// Where the braking maneuver leaves the vehicle `steps` integration steps after q (at rest it
+// stays put).
+template <VehicleModel V>
+typename V::State braked_state(const V& vehicle, typename V::State q, std::uint64_t steps,
+                               double dt) noexcept {
+  for (std::uint64_t i = 0; i < steps && !vehicle.is_stopped(q); ++i) q = vehicle.brake_step(q, dt);
+  return q;
+}
+
 }  // namespace grip

@@ -87,6 +87,25 @@ inline double wrap_angle(double a) noexcept {
   return a;
 }
 
+// Two states of one model closer than this count as the same: the reference point within
+// this distance [m], the heading (wrapped) and every other component within this much.
+inline constexpr double kStateMatchTolerance = 1e-6;
+
+// Whether a and b are the same state to within kStateMatchTolerance. A controller executes a
+// plan only from the state the plan predicts (sim/plan_executor.hpp), and the planner replans
+// when the vehicle will not be where its tree says: both sides decide it with this.
+template <typename State>
+bool states_match(const State& a, const State& b) noexcept {
+  if (std::hypot(state_x(a) - state_x(b), state_y(a) - state_y(b)) > kStateMatchTolerance ||
+      std::abs(wrap_angle(state_theta(a) - state_theta(b))) > kStateMatchTolerance) {
+    return false;
+  }
+  for (int i = 3; i < static_cast<int>(a.size()); ++i) {
+    if (std::abs(a[i] - b[i]) > kStateMatchTolerance) return false;
+  }
+  return true;
+}
+
 Status validate_positive(std::string_view name, double value);
 Status validate_finite_state(std::string_view vehicle, const double* values, int n);
 Status validate_footprint(std::string_view vehicle, const Footprint& footprint);

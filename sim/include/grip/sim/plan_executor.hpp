@@ -97,7 +97,7 @@ struct ExecutorStats {
   std::uint64_t plans_rejected = 0;
   std::uint64_t plans_started = 0;
   std::uint64_t plans_superseded = 0;  // queued plans replaced before they started
-  std::uint64_t start_mismatches = 0;  // plans whose predicted start differed (> 1e-6 m/rad)
+  std::uint64_t start_mismatches = 0;  // plans whose predicted start differed (!states_match)
   double max_start_position_error_m = 0.0;
   double max_start_heading_error_rad = 0.0;
   double distance_m = 0.0;     // sum of the reference point's chords per sub-step
