@@ -703,12 +703,15 @@ void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured
   // from there at once rather than waiting seconds for it to stop.
   const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
   if (measured.plan_cycle != 0 || chain_start_ns_ == 0 ||
-      measured.stamp_ns < chain_start_ns_ + cycle_ns || measured.stamp_ns > plan_start_ns_) {
+      measured.stamp_ns < chain_start_ns_ + cycle_ns) {
     return;
   }
+  // A state stamped after the next plan's start (the planner runs late) is taken as it is.
   const double step_s = cycle_->planner().config().integration_step_s;
-  const auto brake_steps = static_cast<std::uint64_t>(
-      std::llround(static_cast<double>(plan_start_ns_ - measured.stamp_ns) * 1e-9 / step_s));
+  const std::uint64_t ahead_ns =
+      plan_start_ns_ > measured.stamp_ns ? plan_start_ns_ - measured.stamp_ns : 0;
+  const auto brake_steps =
+      static_cast<std::uint64_t>(std::llround(static_cast<double>(ahead_ns) * 1e-9 / step_s));
   const State q = braked_state(vehicle_, state_of(measured), brake_steps, step_s);
   // A controller refuses a plan that does not start where the vehicle is (states_match).
   if (!states_match(q, cycle_->next_plan_start())) {
