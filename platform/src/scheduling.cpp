@@ -204,6 +204,17 @@ SchedPolicy current_policy() noexcept {
   }
 }
 
+DeadlineReservation current_deadline_reservation() noexcept {
+  SchedAttr attr{};
+  const auto got = os_call("sched_getattr", [&] {
+    return ::syscall(SYS_sched_getattr, 0, &attr, static_cast<unsigned>(sizeof attr), 0U);
+  });
+  if (!got.ok() || attr.sched_policy != kSchedDeadline) return {};
+  return {std::chrono::nanoseconds(attr.sched_runtime),
+          std::chrono::nanoseconds(attr.sched_deadline),
+          std::chrono::nanoseconds(attr.sched_period)};
+}
+
 SchedulingPrivileges scheduling_privileges() {
   SchedulingPrivileges privileges;
   privileges.cap_sys_nice = detail::has_effective_capability(CAP_SYS_NICE);

@@ -189,6 +189,7 @@ CycleOutcome ReplanningCycle<V>::run_growing(
   out.edges_added = planner_.stats().edges_added - edges_before;
 
   const std::int64_t commit_start = now_ns();
+  out.grow_ns = commit_start - cycle_start - out.retain_ns;
   // 3. Commit: the solution if there is one, else the state closest to the target; its path
   // must cover the next cycle and end where the vehicle can brake safely.
   const TreeState candidate =

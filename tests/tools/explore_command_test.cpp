@@ -8,9 +8,11 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -64,20 +66,60 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
                    static_cast<double>(above_80) / n);
 }
 
+// The cycle trace: a header and one row per planning cycle, numbered from 0, each row's phases
+// within its compute time and its miss consistent with its lateness.
+void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles) {
+  std::ifstream in(path);
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line)) << path << " is empty";
+  std::vector<std::string> header;
+  {
+    std::stringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) header.push_back(f);
+  }
+  const auto column = [&](const char* name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name << " missing from " << line;
+    return static_cast<std::size_t>(it - header.begin());
+  };
+  const std::size_t cycle = column("cycle"), wake = column("wake_us"),
+                    prepare = column("prepare_us"), retain = column("retain_us"),
+                    grow = column("grow_us"), commit = column("commit_us"),
+                    compute = column("compute_us"), lateness = column("lateness_us"),
+                    missed = column("missed");
+  std::uint64_t rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::stringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+    ASSERT_EQ(v.size(), header.size()) << line;
+    EXPECT_EQ(v[cycle], static_cast<double>(rows)) << line;
+    EXPECT_GE(v[wake], 0.0) << line;
+    EXPECT_LE(v[prepare] + v[retain] + v[grow] + v[commit], v[compute] + 1.0) << line;
+    EXPECT_EQ(v[missed] == 1.0, v[lateness] > 0.0) << line;
+    ++rows;
+  }
+  // The planner runs on for a moment after the simulator has ended the run.
+  EXPECT_GE(rows, planner_cycles);
+}
+
 TEST(ExploreCommand, ExploresASmallMapWithoutCollisionAndWritesReportAndPicture) {
   const std::string map = write_small_map();
   const std::string report = ::testing::TempDir() + "grip-explore-report.json";
   const std::string image = ::testing::TempDir() + "grip-explore.png";
+  const std::string trace = ::testing::TempDir() + "grip-explore-cycles.csv";
   const CommandRun r =
       run("explore --map " + map +
           " --robot dd-vel --time-scale 2 --max-sim-time 20 --domain 81 --report " + report +
-          " --image " + image);
+          " --image " + image + " --cycle-trace " + trace);
   ASSERT_TRUE(r.status == 0 || r.status == 3) << r.output;  // complete, or timed out
-  expect_a_sane_run(read_json(report), r.output);
+  const nlohmann::json j = read_json(report);
+  expect_a_sane_run(j, r.output);
   std::ifstream png(image, std::ios::binary);
   char signature[8] = {};
   png.read(signature, 8);
   EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+  expect_a_cycle_trace(trace, j.at("cycles").get<std::uint64_t>());
 }
 
 TEST(ExploreCommand, SimulatorAndPlannerWorkAsTwoProcesses) {
@@ -162,6 +204,10 @@ TEST(ExploreCommand, BadMapsAndOptionsAreRefusedNamingWhatIsWrong) {
   r = run("explore --lockstep --lockstep-edges 0");
   EXPECT_NE(r.status, 0) << r.output;  // CLI11's own exit code for a value out of range
   EXPECT_NE(r.output.find("--lockstep-edges"), std::string::npos) << r.output;
+
+  r = run("explore --cycle-trace /nonexistent/grip-cycles.csv");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("/nonexistent/grip-cycles.csv"), std::string::npos) << r.output;
 
   r = run("explore --time-scale 0");
   EXPECT_EQ(r.status, 2) << r.output;

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "cycle_trace.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
 #include "grip/scenes/scenes.hpp"
@@ -48,6 +49,7 @@ struct ExploreOptions {
   unsigned domain = 0;
   std::string report;
   std::string image;
+  std::string cycle_trace;  // grip explore: the planner's cycles, as CSV
 };
 
 std::atomic<bool> g_stop{false};
@@ -284,8 +286,18 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
   std::unique_ptr<rt::dds::PlannerParticipant> planner;
   std::thread planner_thread;
   std::optional<Result<rt::dds::PlannerParticipantReport>> planner_result;
+  std::optional<CycleTrace> trace;
+  if (!o.cycle_trace.empty()) {
+    auto opened = CycleTrace::open(o.cycle_trace);
+    if (!opened) {
+      std::cerr << command << ": " << opened.error().message << "\n";
+      return 2;
+    }
+    trace.emplace(std::move(opened).value());
+  }
   if (with_planner) {
     rt::dds::PlannerParticipantConfig pc;
+    if (trace) pc.on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
     pc.domain = o.domain;
     pc.robot = *robot;
     pc.seed = o.seed;
@@ -309,6 +321,9 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     if (planner_result && !planner_result->ok()) {
       std::cerr << command << ": planner: " << planner_result->error().message << "\n";
     }
+  }
+  if (trace) {
+    if (Status s = trace->close(); !s) std::cerr << command << ": " << s.error().message << "\n";
   }
   const rt::dds::PlannerTreePicture tree =
       planner ? planner->last_tree() : rt::dds::PlannerTreePicture{};
@@ -346,6 +361,8 @@ void register_explore_commands(CLI::App& app) {
                 "With --lockstep: edges the planner grows per cycle")
       ->check(CLI::Range(1U, 200'000U))
       ->capture_default_str();
+  e->add_option("--cycle-trace", explore->cycle_trace,
+                "Write every planning cycle's timing and outcome here (CSV)");
   e->add_flag("--no-safety", explore->no_safety,
               "The paper's ablation: plans are not checked for a safe braking maneuver");
   e->callback([explore]() {

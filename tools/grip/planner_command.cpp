@@ -9,9 +9,11 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "commands.hpp"
+#include "cycle_trace.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
 
@@ -34,6 +36,7 @@ struct PlannerOptions {
   double startup_timeout_s = 0.0;
   std::uint64_t seed = 1;
   std::string report;
+  std::string cycle_trace;
 };
 
 std::atomic<rt::dds::PlannerParticipant*> g_running{nullptr};
@@ -109,6 +112,16 @@ int run_planner(const PlannerOptions& o) {
   config->on_progress = [tty](const std::string& line) {
     if (tty) std::cerr << "\r" << line << "    " << std::flush;
   };
+  std::optional<CycleTrace> trace;
+  if (!o.cycle_trace.empty()) {
+    auto opened = CycleTrace::open(o.cycle_trace);
+    if (!opened) {
+      std::cerr << "grip planner: " << opened.error().message << "\n";
+      return 2;
+    }
+    trace.emplace(std::move(opened).value());
+    config->on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
+  }
   auto planner = rt::dds::PlannerParticipant::create(*config);
   if (!planner) {
     std::cerr << "grip planner: " << planner.error().message << "\n";
@@ -126,6 +139,12 @@ int run_planner(const PlannerOptions& o) {
   if (!report) {
     std::cerr << "grip planner: " << report.error().message << "\n";
     return 1;
+  }
+  if (trace) {
+    if (Status s = trace->close(); !s) {
+      std::cerr << "grip planner: " << s.error().message << "\n";
+      return 1;
+    }
   }
   const auto& r = *report;
   std::cout << "grip planner: " << r.cycles << " cycles, " << r.misses << " misses, policy "
@@ -212,6 +231,8 @@ void register_planner_command(CLI::App& app) {
                   "Give up if map, state and goal are not there after this many seconds (0: wait)")
       ->capture_default_str();
   cmd->add_option("--report", o->report, "Write a JSON report here");
+  cmd->add_option("--cycle-trace", o->cycle_trace,
+                  "Write every planning cycle's timing and outcome here (CSV)");
   cmd->callback([o]() {
     const int rc = run_planner(*o);
     if (rc != 0) throw CLI::RuntimeError(rc);

@@ -638,8 +638,10 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, bool map_c
     return explored_ ? planner.root_state()
                      : selector_->select(planner, cycle_->cycle_steps()).state;
   };
-  const CycleOutcome out = lockstep_ ? cycle_->run_for_edges(now, lockstep_edges_, choose)
-                                     : cycle_->run(now, deadline_ns, choose);
+  const std::int64_t prepared = platform::now_ns();
+  CycleOutcome out = lockstep_ ? cycle_->run_for_edges(now, lockstep_edges_, choose)
+                               : cycle_->run(now, deadline_ns, choose);
+  out.prepare_ns = prepared - start;
   ++cycles_;
   const std::int64_t end = platform::now_ns();
   misses_ += !lockstep_ && end > deadline_ns ? 1 : 0;
@@ -996,6 +998,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
       report.misses += record.missed ? 1 : 0;
       report.wake_latency.record(record.wake_latency_ns);
       report.compute.record(record.compute_ns);
+      if (config_.on_cycle) config_.on_cycle(record);
     }
     if (done) break;
     if (config_.on_progress && platform::now_ns() >= next_progress) {
@@ -1046,9 +1049,13 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
     note_vehicle_state(state);
     plan_start_ns_ = state.stamp_ns + cycle_ns;  // t[i] = the state's time + T
     check_vehicle_follows(state);
-    plan_cycle(start, map_changed, newly_blocked, 0);
-    ++report.cycles;
-    report.compute.record(platform::now_ns() - start);
+    CycleRecord record;
+    record.outcome = plan_cycle(start, map_changed, newly_blocked, 0);
+    record.cycle = report.cycles++;
+    record.release_ns = start;
+    record.compute_ns = platform::now_ns() - start;
+    report.compute.record(record.compute_ns);
+    if (config_.on_cycle) config_.on_cycle(record);
     if (config_.on_progress && platform::now_ns() >= next_progress) {
       next_progress += 250'000'000;
       config_.on_progress(progress_line(report));

@@ -69,6 +69,15 @@ Result<SchedulingOutcome> apply_scheduling(const SchedulingRequest& request);
 // kFifo; SCHED_BATCH and SCHED_IDLE count as kOther.
 SchedPolicy current_policy() noexcept;
 
+// The calling thread's SCHED_DEADLINE reservation as the kernel holds it (sched_getattr); all
+// zero when the thread runs under another policy.
+struct DeadlineReservation {
+  std::chrono::nanoseconds runtime{};
+  std::chrono::nanoseconds deadline{};
+  std::chrono::nanoseconds period{};
+};
+DeadlineReservation current_deadline_reservation() noexcept;
+
 // What the kernel checks before granting a real-time policy, read for the calling thread.
 struct SchedulingPrivileges {
   bool cap_sys_nice = false;  // CAP_SYS_NICE in the effective set: any policy is allowed

@@ -47,7 +47,11 @@ struct CycleOutcome {
   std::uint32_t trajectories_used = 0;
   double plan_duration_s = 0.0;  // of the committed plan, from the new root
   std::int64_t retain_ns = 0;    // re-rooting, pruning and rescoring (or the restart)
+  std::int64_t grow_ns = 0;      // anytime growth
   std::int64_t commit_ns = 0;    // choosing and extracting the plan after growth
+  // The caller's work before the cycle (map updates, the vehicle's state, the choice of a
+  // target), set by the caller: a cycle trace then accounts for the whole cycle.
+  std::int64_t prepare_ns = 0;
 };
 
 template <VehicleModel V>

@@ -38,6 +38,7 @@
 #include "grip/platform/scheduling.hpp"
 #include "grip/rt/dds/messages.hpp"
 #include "grip/rt/latency_histogram.hpp"
+#include "grip/rt/periodic_loop.hpp"
 #include "grip/vehicles/vehicle.hpp"
 
 namespace grip::rt::dds {
@@ -78,6 +79,9 @@ struct PlannerParticipantConfig {
   bool lock_memory = true;
   // Called about every 250 ms from run()'s thread with a one-line summary (progress display).
   std::function<void(const std::string&)> on_progress;
+  // Called from run()'s thread with every cycle's record, soon after the cycle (a cycle trace).
+  // In lockstep there is no release or deadline: the record's release is the cycle's start.
+  std::function<void(const CycleRecord&)> on_cycle;
 };
 
 struct PlannerParticipantReport {
