@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "goal.h"
-#include "grip/exploration/frontier.hpp"
+#include "grip/exploration/exploration_target.hpp"
 #include "grip/exploration/path_selector.hpp"
 #include "grip/platform/clock.hpp"
 #include "grip/platform/dds/reader.hpp"
@@ -180,7 +180,8 @@ class PlannerParticipantFor final : public PlannerParticipant {
   };
 
   PlannerParticipantFor(const PlannerParticipantConfig& config, const V& vehicle, Entities entities,
-                        platform::Wakeup wakeup, platform::Wakeup lockstep_inputs);
+                        platform::Wakeup wakeup, platform::Wakeup lockstep_inputs,
+                        platform::Wakeup target_wanted);
 
   // Receive thread.
   void receive_main();
@@ -200,6 +201,9 @@ class PlannerParticipantFor final : public PlannerParticipant {
                           std::int64_t deadline_ns) noexcept;
   Result<PlannerParticipantReport> run_lockstep();
 
+  // Target thread.
+  void target_main();
+
   // Publish thread.
   void publish_main();
   void publish_plan(const PlanSlot& slot);
@@ -207,7 +211,10 @@ class PlannerParticipantFor final : public PlannerParticipant {
 
   Status start_up();
   Status create_cycle(double time_scale, bool explore);
-  void choose_frontier_target(bool map_changed) noexcept;
+  void update_frontier_target(bool map_changed) noexcept;
+  void choose_frontier_target_now() noexcept;
+  void request_frontier_target() noexcept;
+  void apply_frontier_target() noexcept;
   void note_vehicle_state(const StateSample& measured) noexcept;
   void check_vehicle_follows(const StateSample& measured) noexcept;
   PlannerParticipantReport final_report(PlannerParticipantReport report) const;
@@ -223,6 +230,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   Entities dds_;
   platform::Wakeup wakeup_;
   platform::Wakeup lockstep_inputs_;  // lockstep: a state or map tiles were handed over
+  platform::Wakeup target_wanted_;    // real time: a frontier target was requested
   std::atomic<bool> threads_stop_{false};
 
   // Receive thread only.
@@ -255,6 +263,15 @@ class PlannerParticipantFor final : public PlannerParticipant {
   std::string publish_policy_;  // written by the publish thread before publish_policy_set_
   std::atomic<bool> publish_policy_set_{false};
   std::atomic<std::uint64_t> write_failures_{0};
+  // The frontier target's hand-over. kIdle: the planning thread owns target_ (it copies its map
+  // in and notes the robot's position); kRequested: the target thread chooses; kChosen: the
+  // planning thread reads the choice, then makes it kIdle again.
+  enum TargetStage : std::uint8_t { kIdle, kRequested, kChosen };
+  std::atomic<std::uint8_t> target_stage_{kIdle};
+  std::optional<ExplorationTarget> target_;  // created at start-up, before any request
+  double target_robot_x_m_ = 0.0;            // the request: where the robot will be, and when
+  double target_robot_y_m_ = 0.0;
+  std::int64_t target_robot_ns_ = 0;
 
   // Planning thread only (after start-up).
   std::optional<OccupancyGrid> grid_;
@@ -262,17 +279,14 @@ class PlannerParticipantFor final : public PlannerParticipant {
   // Exploration (section 3), while no goal was given.
   bool exploring_ = false;
   bool explored_ = false;
-  std::optional<ClearanceMap> clearance_;
-  std::optional<FrontierMap> frontiers_;
   std::optional<PathSelector> selector_;
   double target_x_m_ = 0.0;
   double target_y_m_ = 0.0;
-  // Progress toward the frontier target: its best rho_A* and when (vehicle time) it was reached.
-  double target_best_rho_m_ = std::numeric_limits<double>::infinity();
-  std::uint64_t target_progress_ns_ = 0;
-  bool target_chosen_ = false;  // choose_frontier_target has chosen at least once
+  std::uint32_t frontier_groups_ = 0;
+  std::uint32_t frontier_groups_given_up_ = 0;
+  bool target_requested_ = false;  // a frontier target has been requested at least once
   std::uint32_t cycles_since_target_ = 0;
-  bool map_changed_since_target_ = false;
+  bool map_changed_since_target_ = true;  // target_ holds the map of its creation
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
   double time_scale_ = 1.0;
   bool lockstep_ = false;  // from the first state: plan once per state, by edge count
@@ -293,6 +307,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
 
   std::thread receive_thread_;
   std::thread publish_thread_;
+  std::thread target_thread_;
 };
 
 template <VehicleModel V>
@@ -331,15 +346,19 @@ Result<std::unique_ptr<PlannerParticipant>> PlannerParticipantFor<V>::create(
   if (!wakeup) return wakeup.error();
   auto lockstep_inputs = platform::Wakeup::create();
   if (!lockstep_inputs) return lockstep_inputs.error();
+  auto target_wanted = platform::Wakeup::create();
+  if (!target_wanted) return target_wanted.error();
   std::unique_ptr<PlannerParticipantFor> self(new PlannerParticipantFor(
       config, vehicle,
       Entities{std::move(participant).value(), std::move(states).value(), std::move(maps).value(),
                std::move(goals).value(), std::move(requests).value(), std::move(plans).value(),
                std::move(status).value(), std::move(waitset).value()},
-      std::move(wakeup).value(), std::move(lockstep_inputs).value()));
+      std::move(wakeup).value(), std::move(lockstep_inputs).value(),
+      std::move(target_wanted).value()));
   // Service threads start now: before any SCHED_DEADLINE thread, which could not create them.
   self->receive_thread_ = std::thread([raw = self.get()] { raw->receive_main(); });
   self->publish_thread_ = std::thread([raw = self.get()] { raw->publish_main(); });
+  self->target_thread_ = std::thread([raw = self.get()] { raw->target_main(); });
   return std::unique_ptr<PlannerParticipant>(std::move(self));
 }
 
@@ -347,12 +366,14 @@ template <VehicleModel V>
 PlannerParticipantFor<V>::PlannerParticipantFor(const PlannerParticipantConfig& config,
                                                 const V& vehicle, Entities entities,
                                                 platform::Wakeup wakeup,
-                                                platform::Wakeup lockstep_inputs)
+                                                platform::Wakeup lockstep_inputs,
+                                                platform::Wakeup target_wanted)
     : config_(config),
       vehicle_(vehicle),
       dds_(std::move(entities)),
       wakeup_(std::move(wakeup)),
       lockstep_inputs_(std::move(lockstep_inputs)),
+      target_wanted_(std::move(target_wanted)),
       receiver_(config.max_map_cells) {}
 
 template <VehicleModel V>
@@ -360,8 +381,10 @@ PlannerParticipantFor<V>::~PlannerParticipantFor() {
   threads_stop_.store(true, std::memory_order_release);
   static_cast<void>(dds_.waitset.wake());
   wakeup_.signal();
+  target_wanted_.signal();
   if (receive_thread_.joinable()) receive_thread_.join();
   if (publish_thread_.joinable()) publish_thread_.join();
+  if (target_thread_.joinable()) target_thread_.join();
 }
 
 // ---- Receive thread ----
@@ -631,7 +654,7 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, bool map_c
     target_x_m_ = goal.x_m;
     target_y_m_ = goal.y_m;
   }
-  if (exploring_) choose_frontier_target(map_changed);
+  if (exploring_) update_frontier_target(map_changed);
   const auto now = [] { return platform::now_ns(); };
   const auto choose = [this](const Planner<V>& planner) {
     if (!exploring_) return planner.best_state();
@@ -674,8 +697,8 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, bool map_c
   status.cycle = cycles_;
   status.exploring = exploring_;
   status.exploration_complete = explored_;
-  status.frontier_groups = frontiers_ ? static_cast<std::uint32_t>(frontiers_->groups().size()) : 0;
-  status.frontier_groups_given_up = frontiers_ ? frontiers_->given_up_groups() : 0;
+  status.frontier_groups = frontier_groups_;
+  status.frontier_groups_given_up = frontier_groups_given_up_;
   status.target_x_m = target_x_m_;
   status.target_y_m = target_y_m_;
   status.misses = misses_;
@@ -723,52 +746,81 @@ void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured
   }
 }
 
+// The frontier target is chosen again every target_refresh_cycles cycles, from where the plan
+// starts (the robot moves even when the map does not change). In real time the target thread
+// chooses it while the planning thread goes on growing toward the previous target, and the
+// first cycle after the choice takes it over. In lockstep the choice is made at once, in the
+// cycle, so that a seed reproduces a run.
 template <VehicleModel V>
-void PlannerParticipantFor<V>::choose_frontier_target(bool map_changed) noexcept {
-  // The target is re-chosen from where the plan starts every target_refresh_cycles cycles (the
-  // robot moves even when the map does not change), and the first time at once.
+void PlannerParticipantFor<V>::update_frontier_target(bool map_changed) noexcept {
   map_changed_since_target_ = map_changed_since_target_ || map_changed;
-  if (target_chosen_ && ++cycles_since_target_ < config_.target_refresh_cycles) return;
-  target_chosen_ = true;
+  if (lockstep_) {
+    if (target_requested_ && ++cycles_since_target_ < config_.target_refresh_cycles) return;
+    choose_frontier_target_now();
+    return;
+  }
+  const std::uint8_t stage = target_stage_.load(std::memory_order_acquire);
+  if (stage == kChosen) {
+    apply_frontier_target();
+    target_stage_.store(kIdle, std::memory_order_release);
+  } else if (stage == kIdle &&
+             (!target_requested_ || ++cycles_since_target_ >= config_.target_refresh_cycles)) {
+    request_frontier_target();
+    target_stage_.store(kRequested, std::memory_order_release);
+    target_wanted_.signal();
+  }
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::choose_frontier_target_now() noexcept {
+  request_frontier_target();
+  target_->choose(target_robot_x_m_, target_robot_y_m_, target_robot_ns_);
+  apply_frontier_target();
+}
+
+// Planning thread (or start-up), with target_ its own: kIdle, or lockstep.
+template <VehicleModel V>
+void PlannerParticipantFor<V>::request_frontier_target() noexcept {
+  target_requested_ = true;
   cycles_since_target_ = 0;
-  const bool map_changed_since = std::exchange(map_changed_since_target_, false);
-  if (map_changed_since) clearance_->compute(*grid_);
+  if (std::exchange(map_changed_since_target_, false)) target_->copy_map(*grid_);
   const State& here = cycle_->plan_start();
-  const ExplorationStatus status =
-      frontiers_->update(*grid_, *clearance_, state_x(here), state_y(here));
+  target_robot_x_m_ = state_x(here);
+  target_robot_y_m_ = state_y(here);
+  target_robot_ns_ = static_cast<std::int64_t>(plan_start_ns_);
+}
+
+// Planning thread, with target_ its own (kChosen, or lockstep).
+template <VehicleModel V>
+void PlannerParticipantFor<V>::apply_frontier_target() noexcept {
+  const ExplorationTarget& target = *target_;
+  frontier_groups_ = target.groups();
+  frontier_groups_given_up_ = target.given_up_groups();
+  const ExplorationStatus status = target.status();
   if (status != ExplorationStatus::kTarget) {
     // No reachable frontier is left (or the robot is off the map): stop where it stands.
     explored_ = status == ExplorationStatus::kComplete;
+    const State& here = cycle_->plan_start();
     cycle_->set_goal(GoalRegion{state_x(here), state_y(here), 0.5});
     return;
   }
   explored_ = false;
-  const FrontierGroup& group = frontiers_->groups()[frontiers_->target()];
-  if (group.nearest_cell != FrontierGroup::kNoCell) {
-    const double x = grid_->cell_center_x(grid_->cell_x(group.nearest_cell));
-    const double y = grid_->cell_center_y(grid_->cell_y(group.nearest_cell));
-    // A new target (its nearest cell moved by more than a few metres), progress toward it, or
-    // newly sensed cells: a vehicle that still learns the map is not stuck, and in a small
-    // space successive targets lie within a few metres of each other.
-    if (std::hypot(x - target_x_m_, y - target_y_m_) > 3.0 ||
-        group.rho_m < target_best_rho_m_ - 0.5 || map_changed_since) {
-      target_best_rho_m_ = group.rho_m;
-      target_progress_ns_ = plan_start_ns_;
-    }
-    target_x_m_ = x;
-    target_y_m_ = y;
+  target_x_m_ = target.target_x_m();
+  target_y_m_ = target.target_y_m();
+  cycle_->set_goal(GoalCells{target.approach_cells()});
+  selector_->set_target(*grid_, target.target_cells());
+}
+
+// ---- Target thread ----
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::target_main() {
+  while (!threads_stop_.load(std::memory_order_acquire)) {
+    static_cast<void>(target_wanted_.wait(std::chrono::milliseconds(100)));
+    if (target_stage_.load(std::memory_order_acquire) != kRequested) continue;
+    target_->choose(target_robot_x_m_, target_robot_y_m_, target_robot_ns_);
+    target_stage_.store(kChosen, std::memory_order_release);
   }
-  // No closer for a long while: dynamics or a gap the chassis cannot pass keep the vehicle from
-  // it. Set it aside; the next cycle picks another target, or ends exploration.
-  const auto since_progress_ns = static_cast<double>(
-      static_cast<std::int64_t>(plan_start_ns_) - static_cast<std::int64_t>(target_progress_ns_));
-  if (since_progress_ns > config_.frontier_give_up_s * 1e9) {
-    frontiers_->give_up(frontiers_->target());
-    target_best_rho_m_ = std::numeric_limits<double>::infinity();
-    target_progress_ns_ = plan_start_ns_;
-  }
-  cycle_->set_goal(GoalCells{frontiers_->approach_cells()});
-  selector_->set_target(*grid_, frontiers_->target_cells());
 }
 
 // ---- Publish thread ----
@@ -946,12 +998,12 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
 
   // Exploration's fixed memory, sized from the map, also at start-up (a goal may never come).
   const OccupancyGrid& grid = *grid_;
-  FrontierConfig frontier_config;
-  frontier_config.clearance_m = planner_config.rho_clearance_m;
-  auto frontiers =
-      FrontierMap::create(grid.width(), grid.height(), grid.resolution(), frontier_config);
-  if (!frontiers) return frontiers.error();
-  frontiers_.emplace(std::move(frontiers).value());
+  ExplorationTargetConfig target_config;
+  target_config.frontier.clearance_m = planner_config.rho_clearance_m;
+  target_config.give_up_after_s = config_.frontier_give_up_s;
+  auto target = ExplorationTarget::create(grid, target_config);
+  if (!target) return target.error();
+  target_.emplace(std::move(target).value());
   PathSelectionConfig selection;
   selection.sensing_radius_m =
       config_.sensing_radius_m > 0.0 ? config_.sensing_radius_m : grid.width_m() / 10.0;
@@ -959,9 +1011,6 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
                                        planner_config.max_edges, selection);
   if (!selector) return selector.error();
   selector_.emplace(std::move(selector).value());
-  auto clearance = ClearanceMap::create_for(grid);
-  if (!clearance) return clearance.error();
-  clearance_.emplace(std::move(clearance).value());
   return Ok{};
 }
 
@@ -969,6 +1018,9 @@ template <VehicleModel V>
 Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
   if (Status s = start_up(); !s) return s.error();
   if (lockstep_) return run_lockstep();
+  // The first target is chosen before the first cycle, which would otherwise plan toward the
+  // start while the target thread chooses.
+  if (exploring_) choose_frontier_target_now();
 
   PeriodicLoopConfig loop_config;
   const std::int64_t period_wall = period_wall_ns_.load(std::memory_order_relaxed);

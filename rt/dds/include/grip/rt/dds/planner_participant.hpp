@@ -12,6 +12,11 @@
 //   publish thread (ordinary): writes plans and status. A reliable writer that blocks in
 //     dds_write (up to max_blocking_time) delays only this thread; the planning thread meanwhile
 //     replaces the pending plan by a newer one, and the replaced one is counted as superseded.
+//   target thread (ordinary; exploring in real time): chooses the frontier target
+//     (ExplorationTarget: clearance, the frontier wavefront, grouping), whole-map passes of
+//     milliseconds, on a copy of the map the planning thread hands over with the robot's
+//     position; one request at a time, through an atomic stage (idle, requested, chosen). The
+//     planning thread grows toward the previous target meanwhile.
 //
 // Lockstep (a simulator that waits for each plan says so in its states): no periodic thread;
 // run()'s thread plans one cycle for each state, once the map has every update sensed before
@@ -70,10 +75,10 @@ struct PlannerParticipantConfig {
   // A frontier target the vehicle gets no closer to (by rho_A*, 0.5 m) for this long, in
   // vehicle time, is given up (FrontierMap::give_up) and the next one chosen.
   double frontier_give_up_s = 60.0;
-  // The whole-map passes behind a target (clearance, the frontier wavefront and its groups, the
-  // path selector's rays and rho toward the new target) run every this many cycles, not every
-  // cycle: together they take longer than a short cycle's budget once much of the map is known,
-  // and the tree, which needs that time to grow, is carried over in between. 1: every cycle.
+  // The frontier target is chosen again every this many cycles (1: every cycle). In real time the
+  // choice runs on the target thread, but taking it over still costs the planning thread rho
+  // toward the new target and the path selector's rays (whole-map passes, 0.5 to 1 ms on the
+  // built-in scenes), and the tree, which needs that time to grow, is carried over in between.
   std::uint32_t target_refresh_cycles = 5;
   bool no_safety = false;  // the paper's ablation: no contingency check (plans may end unsafe)
   bool lock_memory = true;

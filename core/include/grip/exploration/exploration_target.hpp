@@ -1,0 +1,86 @@
+#pragma once
+// The exploration target of GRIP.md section 3, chosen again and again as the map grows: the
+// frontier group to head for (FrontierMap: close by rho_A*, small groups first), the cells it is
+// approached from (the planner's target set F) and its own cells (the c of the path selector's
+// weight), and when to set a group aside because the vehicle gets no closer to it.
+//
+// It works on its own copy of the map, so that a runtime can run it beside the planning thread
+// (clearance, the frontier wavefront and the grouping are whole-map passes of milliseconds) and
+// hand its result over, or inline where a run must be reproducible (lockstep).
+//
+// Giving up: a target the vehicle gets no closer to (its rho_A* down by progress_m) for
+// give_up_after_s of vehicle time is given up (FrontierMap::give_up), and the next choice takes
+// another group or ends exploration. A new target (its nearest cell moved by more than
+// retarget_m), progress, or a changed map restart that clock: a vehicle that still senses new
+// cells is not stuck, and in a small space successive targets lie within a few metres of each
+// other.
+//
+// Memory is reserved by create(); copy_map() and choose() never allocate and never throw.
+
+#include <cstdint>
+#include <limits>
+#include <span>
+
+#include "grip/common/result.hpp"
+#include "grip/exploration/frontier.hpp"
+#include "grip/world/clearance_map.hpp"
+#include "grip/world/occupancy_grid.hpp"
+
+namespace grip {
+
+struct ExplorationTargetConfig {
+  FrontierConfig frontier;
+  double give_up_after_s = 60.0;  // [s of vehicle time] without progress toward a target
+  double progress_m = 0.5;        // rho_A* must drop by this much to count as progress
+  double retarget_m = 3.0;        // a nearest cell that moves this far is a new target
+  // Errors name the bad value: FrontierConfig's, and any of the above not finite or not > 0.
+  Status validate(double resolution_m) const;
+};
+
+class ExplorationTarget {
+ public:
+  // For maps of the geometry of `like` (its cells are copied: the first map). Errors as for
+  // OccupancyGrid::create and validate().
+  static Result<ExplorationTarget> create(const OccupancyGrid& like,
+                                          const ExplorationTargetConfig& config);
+
+  // The map the next choose() reads: the caller copies its map in after it changed (asserts the
+  // same width, height and resolution). Not while choose() runs.
+  void copy_map(const OccupancyGrid& map) noexcept;
+  // Chooses the target for a robot (its reference point) at (robot_x_m, robot_y_m) at vehicle
+  // time now_ns. kTarget: approach_cells() and target_cells() describe it; kComplete: no
+  // reachable frontier is left; kRobotOutsideGrid: no target.
+  ExplorationStatus choose(double robot_x_m, double robot_y_m, std::int64_t now_ns) noexcept;
+
+  // Of the last choose(); valid until the next.
+  ExplorationStatus status() const noexcept { return frontiers_.status(); }
+  std::span<const std::uint32_t> approach_cells() const noexcept {
+    return frontiers_.approach_cells();
+  }
+  std::span<const std::uint32_t> target_cells() const noexcept { return frontiers_.target_cells(); }
+  // The target group's cell nearest to the robot by rho_A* (its centre).
+  double target_x_m() const noexcept { return target_x_m_; }
+  double target_y_m() const noexcept { return target_y_m_; }
+  std::uint32_t groups() const noexcept {
+    return static_cast<std::uint32_t>(frontiers_.groups().size());
+  }
+  std::uint32_t given_up_groups() const noexcept { return frontiers_.given_up_groups(); }
+  const OccupancyGrid& map() const noexcept { return map_; }
+
+ private:
+  ExplorationTarget(const ExplorationTargetConfig& config, OccupancyGrid map,
+                    ClearanceMap clearance, FrontierMap frontiers);
+
+  ExplorationTargetConfig config_;
+  OccupancyGrid map_;
+  ClearanceMap clearance_;
+  FrontierMap frontiers_;
+  bool map_changed_ = true;  // since the last choose(): clearance is recomputed
+  double target_x_m_ = 0.0;
+  double target_y_m_ = 0.0;
+  // Progress toward the target: its best rho_A* and when (vehicle time) it was reached.
+  double best_rho_m_ = std::numeric_limits<double>::infinity();
+  std::int64_t progress_ns_ = 0;
+};
+
+}  // namespace grip

@@ -1,0 +1,79 @@
+#include "grip/exploration/exploration_target.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "../world/validation.hpp"
+#include "grip/common/assert.hpp"
+
+namespace grip {
+
+Status ExplorationTargetConfig::validate(double resolution_m) const {
+  if (Status s = frontier.validate(resolution_m); !s) return s;
+  const auto positive = [](const char* name, double value) -> Status {
+    if (std::isfinite(value) && value > 0.0) return Ok{};
+    return invalid_argument(std::string("exploration target: ") + name +
+                            " must be finite and > 0 (got " + detail::format_number(value) + ")");
+  };
+  if (Status s = positive("give_up_after_s", give_up_after_s); !s) return s;
+  if (Status s = positive("progress_m", progress_m); !s) return s;
+  return positive("retarget_m", retarget_m);
+}
+
+Result<ExplorationTarget> ExplorationTarget::create(const OccupancyGrid& like,
+                                                    const ExplorationTargetConfig& config) {
+  if (Status s = config.validate(like.resolution()); !s) return s.error();
+  auto clearance = ClearanceMap::create_for(like);
+  if (!clearance) return clearance.error();
+  auto frontiers =
+      FrontierMap::create(like.width(), like.height(), like.resolution(), config.frontier);
+  if (!frontiers) return frontiers.error();
+  return ExplorationTarget(config, like, std::move(clearance).value(),
+                           std::move(frontiers).value());
+}
+
+ExplorationTarget::ExplorationTarget(const ExplorationTargetConfig& config, OccupancyGrid map,
+                                     ClearanceMap clearance, FrontierMap frontiers)
+    : config_(config),
+      map_(std::move(map)),
+      clearance_(std::move(clearance)),
+      frontiers_(std::move(frontiers)) {}
+
+void ExplorationTarget::copy_map(const OccupancyGrid& map) noexcept {
+  GRIP_ASSERT(map.width() == map_.width() && map.height() == map_.height() &&
+              map.resolution() == map_.resolution());
+  const std::span<const Cell> from = map.cells();
+  std::copy(from.begin(), from.end(), map_.mutable_cells().begin());
+  map_changed_ = true;
+}
+
+ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
+                                            std::int64_t now_ns) noexcept {
+  const bool map_changed = std::exchange(map_changed_, false);
+  if (map_changed) clearance_.compute(map_);
+  const ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m);
+  if (status != ExplorationStatus::kTarget) return status;
+  const FrontierGroup& group = frontiers_.groups()[frontiers_.target()];
+  if (group.nearest_cell != FrontierGroup::kNoCell) {
+    const double x = map_.cell_center_x(map_.cell_x(group.nearest_cell));
+    const double y = map_.cell_center_y(map_.cell_y(group.nearest_cell));
+    if (std::hypot(x - target_x_m_, y - target_y_m_) > config_.retarget_m ||
+        group.rho_m < best_rho_m_ - config_.progress_m || map_changed) {
+      best_rho_m_ = group.rho_m;
+      progress_ns_ = now_ns;
+    }
+    target_x_m_ = x;
+    target_y_m_ = y;
+  }
+  // No closer for a long while: dynamics or a gap the chassis cannot pass keep the vehicle from
+  // it. Set it aside; the next choice takes another target, or ends exploration.
+  if (static_cast<double>(now_ns - progress_ns_) > config_.give_up_after_s * 1e9) {
+    frontiers_.give_up(frontiers_.target());
+    best_rho_m_ = std::numeric_limits<double>::infinity();
+    progress_ns_ = now_ns;
+  }
+  return status;
+}
+
+}  // namespace grip

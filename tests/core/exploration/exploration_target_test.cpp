@@ -1,0 +1,137 @@
+// ExplorationTarget: the frontier target chosen from its own copy of the map, and when a target
+// the vehicle gets no closer to is given up (vehicle time, no clock involved).
+
+#include "grip/exploration/exploration_target.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+namespace grip {
+namespace {
+
+constexpr std::int64_t kSecond = 1'000'000'000;
+
+// Known free space below y = 2.5 m and unknown above, an obstacle on the border between x = 3
+// and 4.5 m splitting the frontier into two groups (as in frontier_test.cpp), 0.1 m cells.
+OccupancyGrid two_frontiers() {
+  OccupancyGrid grid = OccupancyGrid::create(80, 40, 0.1, 0.0, 0.0, Cell::kUnknown).value();
+  grid.fill_rect(0.0, 0.0, 8.0, 2.5, Cell::kFree);
+  grid.fill_rect(2.98, 2.32, 4.52, 2.6, Cell::kObstacle);
+  return grid;
+}
+
+std::vector<std::uint32_t> sorted(std::span<const std::uint32_t> cells) {
+  std::vector<std::uint32_t> v(cells.begin(), cells.end());
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+class ExplorationTargetTest : public ::testing::Test {
+ protected:
+  OccupancyGrid map = two_frontiers();
+  ExplorationTargetConfig config;
+  std::optional<ExplorationTarget> target;
+
+  void SetUp() override {
+    config.give_up_after_s = 60.0;
+    target.emplace(ExplorationTarget::create(map, config).value());
+  }
+};
+
+TEST_F(ExplorationTargetTest, ChoosesWhatTheFrontierMapChoosesOnItsCopyOfTheMap) {
+  // GIVEN the same map given to a FrontierMap directly
+  ClearanceMap clearance = ClearanceMap::create_for(map).value();
+  FrontierMap frontiers = FrontierMap::create(80, 40, 0.1, config.frontier).value();
+  ASSERT_EQ(frontiers.update(map, clearance, 1.0, 1.0), ExplorationStatus::kTarget);
+
+  // WHEN the target is chosen for a robot at the same place
+  ASSERT_EQ(target->choose(1.0, 1.0, 0), ExplorationStatus::kTarget);
+
+  // THEN it is the same group, approached from the same cells, and its position is the centre of
+  // the group's cell nearest to the robot
+  EXPECT_EQ(sorted(target->target_cells()), sorted(frontiers.target_cells()));
+  EXPECT_EQ(sorted(target->approach_cells()), sorted(frontiers.approach_cells()));
+  EXPECT_EQ(target->groups(), 2U);
+  const FrontierGroup& group = frontiers.groups()[frontiers.target()];
+  EXPECT_DOUBLE_EQ(target->target_x_m(), map.cell_center_x(map.cell_x(group.nearest_cell)));
+  EXPECT_DOUBLE_EQ(target->target_y_m(), map.cell_center_y(map.cell_y(group.nearest_cell)));
+}
+
+TEST_F(ExplorationTargetTest, ReadsOnlyTheMapCopiedIntoIt) {
+  // GIVEN a first choice, and then the unknown part of the caller's map sensed as a wall
+  ASSERT_EQ(target->choose(1.0, 1.0, 0), ExplorationStatus::kTarget);
+  map.fill_rect(0.0, 2.5, 8.0, 4.0, Cell::kObstacle);
+  // WHEN it chooses again before the map is copied in THEN the old map still has frontiers
+  EXPECT_EQ(target->choose(1.0, 1.0, kSecond), ExplorationStatus::kTarget);
+  // WHEN the map is copied in THEN nothing is left to explore
+  target->copy_map(map);
+  EXPECT_EQ(target->choose(1.0, 1.0, 2 * kSecond), ExplorationStatus::kComplete);
+  EXPECT_EQ(target->status(), ExplorationStatus::kComplete);
+  EXPECT_TRUE(target->target_cells().empty());
+}
+
+TEST_F(ExplorationTargetTest, ATargetWithoutProgressIsGivenUpAfterTheConfiguredTime) {
+  // GIVEN a robot that stays where it is on an unchanged map
+  ASSERT_EQ(target->choose(1.0, 1.0, 0), ExplorationStatus::kTarget);
+  const std::vector<std::uint32_t> first = sorted(target->target_cells());
+  // WHEN just under the give-up time has passed THEN the target stands
+  ASSERT_EQ(target->choose(1.0, 1.0, 60 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(sorted(target->target_cells()), first);
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  // WHEN more than that has passed THEN it is given up, and the next choice is the other group
+  ASSERT_EQ(target->choose(1.0, 1.0, 61 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 62 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+  EXPECT_NE(sorted(target->target_cells()), first);
+  // AND when that one is given up too, exploration ends and says why
+  ASSERT_EQ(target->choose(1.0, 1.0, 123 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->choose(1.0, 1.0, 124 * kSecond), ExplorationStatus::kComplete);
+  EXPECT_EQ(target->given_up_groups(), 2U);
+}
+
+TEST_F(ExplorationTargetTest, ProgressOrANewMapRestartsTheGiveUpClock) {
+  // GIVEN a target chosen for a robot far from it
+  ASSERT_EQ(target->choose(0.5, 0.5, 0), ExplorationStatus::kTarget);
+  const std::vector<std::uint32_t> first = sorted(target->target_cells());
+  // WHEN the robot comes closer by more than progress_m within the give-up time
+  ASSERT_EQ(target->choose(0.5, 1.5, 50 * kSecond), ExplorationStatus::kTarget);
+  // THEN the clock restarts there: 100 s after the start, the target still stands
+  ASSERT_EQ(target->choose(0.5, 1.5, 100 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  EXPECT_EQ(sorted(target->target_cells()), first);
+  // WHEN the map changes (newly sensed cells) THEN the clock restarts too
+  target->copy_map(map);
+  ASSERT_EQ(target->choose(0.5, 1.5, 150 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 1.5, 200 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  // AND without either, it is given up once the time has passed
+  ASSERT_EQ(target->choose(0.5, 1.5, 211 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 1.5, 212 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+}
+
+TEST(ExplorationTargetConfig, BadValuesAreRefusedByName) {
+  const OccupancyGrid map = two_frontiers();
+  ExplorationTargetConfig config;
+  config.give_up_after_s = 0.0;
+  auto bad = ExplorationTarget::create(map, config);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("give_up_after_s"), std::string::npos) << bad.error().message;
+  config = {};
+  config.progress_m = std::nan("");
+  bad = ExplorationTarget::create(map, config);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("progress_m"), std::string::npos) << bad.error().message;
+  config = {};
+  config.frontier.size_weight = -1.0;
+  bad = ExplorationTarget::create(map, config);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("size_weight"), std::string::npos) << bad.error().message;
+}
+
+}  // namespace
+}  // namespace grip
