@@ -43,6 +43,7 @@ struct BenchExploreOptions {
   std::string out_dir = "bench-explore";
   std::string json;
   bool images = false;
+  bool cycle_traces = false;
 };
 
 struct Run {
@@ -82,6 +83,9 @@ std::vector<std::string> explore_args(const BenchExploreOptions& o, const Run& r
   }
   if (o.no_safety) args.emplace_back("--no-safety");
   if (o.images) args.insert(args.end(), {"--image", o.out_dir + "/" + r.stem + ".png"});
+  if (o.cycle_traces) {
+    args.insert(args.end(), {"--cycle-trace", o.out_dir + "/" + r.stem + ".cycles.csv"});
+  }
   return args;
 }
 
@@ -367,6 +371,8 @@ void register_bench_explore_command(CLI::App& bench) {
   cmd->add_option("--out", o->out_dir, "Directory for every run's report and log")
       ->capture_default_str();
   cmd->add_flag("--images", o->images, "Also draw every run's picture into --out");
+  cmd->add_flag("--cycle-traces", o->cycle_traces,
+                "Also write every run's planning cycles into --out (CSV, as --cycle-trace)");
   cmd->add_option("--json", o->json, "Write the table and every run's figures here");
   cmd->callback([o]() {
     if (const int rc = run_bench(*o); rc != 0) throw CLI::RuntimeError(rc);
