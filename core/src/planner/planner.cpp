@@ -54,8 +54,10 @@ Result<Planner<V>> Planner<V>::create(const V& vehicle, const OccupancyGrid& gri
   if (auto s = config.validate(); !s) return s.error();
   // Chassis checks happen every integration step; inflating the footprint by half the largest
   // motion between two checks makes them cover the continuous trajectory.
+  // rho's wavefront shares the checker's clearance (its inflation is rho_clearance_m).
   auto checker = CollisionChecker::create(
-      grid, vehicle.footprint(), step_collision_margin_m(vehicle, config.integration_step_s));
+      grid, vehicle.footprint(), step_collision_margin_m(vehicle, config.integration_step_s),
+      config.rho_clearance_m);
   if (!checker) return checker.error();
   auto field = DistanceField::create(grid.width(), grid.height(), grid.resolution());
   if (!field) return field.error();
@@ -188,7 +190,13 @@ template <VehicleModel V>
 RetainStatus Planner<V>::restart_towards(const State& q, GoalSpec goal, double horizon_s,
                                          RhoUpdate rho) noexcept {
   if (!vehicle_.validate_state(q)) return RetainStatus::kInvalidState;
-  if (checker_.stale() || !problem_set_) checker_.refresh();
+  if (!problem_set_) {
+    checker_.refresh();
+    changed_ = CellBox{};
+    changed_noted_ = false;
+  } else {
+    refresh_checker();
+  }
   if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
     return RetainStatus::kRootInCollision;
   }
@@ -213,6 +221,19 @@ RetainStatus Planner<V>::restart_towards(const State& q, GoalSpec goal, double h
   validated_revision_ = grid_->revision();
   problem_set_ = true;
   return RetainStatus::kOk;
+}
+
+template <VehicleModel V>
+void Planner<V>::refresh_checker() noexcept {
+  if (checker_.stale()) {
+    if (changed_noted_) {
+      checker_.refresh(changed_);
+    } else {
+      checker_.refresh();
+    }
+  }
+  changed_ = CellBox{};
+  changed_noted_ = false;
 }
 
 template <VehicleModel V>
@@ -319,7 +340,7 @@ RetainStatus Planner<V>::retain_towards(TreeState new_root, GoalSpec goal, doubl
   new_root = resolve(new_root);
   if (new_root.edge == kNoHandle) return RetainStatus::kRootNotInTree;
   const State& q = tree_.edge_state(new_root.edge, new_root.index);
-  if (checker_.stale()) checker_.refresh();
+  refresh_checker();
   if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
     return RetainStatus::kRootInCollision;
   }

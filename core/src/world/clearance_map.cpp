@@ -53,7 +53,8 @@ ClearanceMap::ClearanceMap(int width_cells, int height_cells, double resolution_
       height_(height_cells),
       resolution_(resolution_m),
       half_diagonal_m_(resolution_m * std::sqrt(0.5)),
-      d2_(static_cast<std::size_t>(width_cells) * static_cast<std::size_t>(height_cells), 0) {
+      d2_(static_cast<std::size_t>(width_cells) * static_cast<std::size_t>(height_cells), 0),
+      columns_(d2_.size(), 0) {
   const auto longest = static_cast<std::size_t>(std::max(width_cells, height_cells)) + 2;
   f_.resize(longest);
   d_.resize(longest);
@@ -124,6 +125,87 @@ void ClearanceMap::compute(const OccupancyGrid& grid) noexcept {
   }
   source_revision_ = grid.revision();
   computed_ = true;
+  exact_up_to_d2_ = std::numeric_limits<std::uint32_t>::max();
+}
+
+CellBox ClearanceMap::update(const OccupancyGrid& grid, const CellBox& changed,
+                             std::uint32_t exact_up_to_d2) noexcept {
+  GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
+              grid.resolution() == resolution_);
+  GRIP_ASSERT(computed_);
+  exact_up_to_d2_ = std::min(exact_up_to_d2_, exact_up_to_d2);
+  source_revision_ = grid.revision();
+  if (changed.empty()) return CellBox{};
+  // reach^2 > exact_up_to_d2. The values that can change lie within reach of `changed` (the
+  // window W): a cell farther away keeps its nearest non-free cell if that is within reach, and
+  // stays beyond the bound otherwise. The nearest non-free cell of a W cell, when within reach,
+  // lies in W grown by reach (the source S); the edge of S inside the grid is not an obstacle,
+  // so a W cell with nothing in reach gets a value at least its exact one, beyond the bound.
+  const auto reach = static_cast<int>(std::sqrt(static_cast<double>(exact_up_to_d2))) + 1;
+  const auto clip = [&](const CellBox& b, int grow) {
+    return CellBox{std::max(b.x0 - grow, 0), std::max(b.y0 - grow, 0),
+                   std::min(b.x1 + grow, width_ - 1), std::min(b.y1 + grow, height_ - 1)};
+  };
+  const CellBox window = clip(changed, reach);
+  const CellBox source = clip(window, reach);
+  // Distances that no cell of S can reach: no obstacle in that direction within S.
+  constexpr std::int64_t kFar = std::int64_t{1} << 24;
+  const std::span<const Cell> cells = grid.cells();
+  const auto w = static_cast<std::size_t>(width_);
+  const int source_w = source.x1 - source.x0 + 1;
+
+  // Pass 1, per column of S: distance to the nearest non-free cell of the column within S (or
+  // the grid's outside rows where S reaches them), kept for the rows of W.
+  for (int x = source.x0; x <= source.x1; ++x) {
+    std::int64_t last = source.y0 == 0 ? -1 : -kFar;
+    for (int y = source.y0; y <= source.y1; ++y) {
+      if (cells[static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)] != Cell::kFree) {
+        last = y;
+      }
+      if (y >= window.y0 && y <= window.y1) {
+        columns_[static_cast<std::size_t>(y - window.y0) * static_cast<std::size_t>(source_w) +
+                 static_cast<std::size_t>(x - source.x0)] =
+            static_cast<std::uint32_t>(std::min<std::int64_t>(y - last, kFar));
+      }
+    }
+    last = source.y1 == height_ - 1 ? height_ : source.y1 + kFar;
+    for (int y = source.y1; y >= source.y0; --y) {
+      if (cells[static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)] != Cell::kFree) {
+        last = y;
+      }
+      if (y >= window.y0 && y <= window.y1) {
+        std::uint32_t& g =
+            columns_[static_cast<std::size_t>(y - window.y0) * static_cast<std::size_t>(source_w) +
+                     static_cast<std::size_t>(x - source.x0)];
+        g = std::min(g, static_cast<std::uint32_t>(std::min<std::int64_t>(last - y, kFar)));
+      }
+    }
+  }
+
+  // Pass 2, per row of W over the columns of S, with the grid's outside columns where S reaches
+  // them (f = 0 there); only W's cells are written.
+  const bool left_border = source.x0 == 0;
+  const bool right_border = source.x1 == width_ - 1;
+  const int first = left_border ? 1 : 0;  // f index of column source.x0
+  const int n = source_w + (left_border ? 1 : 0) + (right_border ? 1 : 0);
+  for (int y = window.y0; y <= window.y1; ++y) {
+    const std::uint32_t* g = columns_.data() + static_cast<std::size_t>(y - window.y0) *
+                                                   static_cast<std::size_t>(source_w);
+    if (left_border) f_[0] = 0;
+    for (int i = 0; i < source_w; ++i) {
+      const auto gi = static_cast<std::int64_t>(g[i]);
+      f_[static_cast<std::size_t>(first + i)] = gi * gi;
+    }
+    if (right_border) f_[static_cast<std::size_t>(n - 1)] = 0;
+    transform_1d(f_.data(), n, d_.data(), v_.data(), z_.data());
+    std::uint32_t* row = d2_.data() + static_cast<std::size_t>(y) * w;
+    for (int x = window.x0; x <= window.x1; ++x) {
+      const std::int64_t value = d_[static_cast<std::size_t>(first + x - source.x0)];
+      row[x] = static_cast<std::uint32_t>(
+          std::min<std::int64_t>(value, std::numeric_limits<std::uint32_t>::max()));
+    }
+  }
+  return window;
 }
 
 double ClearanceMap::clearance_m(std::uint32_t index) const noexcept {

@@ -18,7 +18,8 @@ constexpr double kTouchTolerance = 1e-9;
 }  // namespace
 
 Result<CollisionChecker> CollisionChecker::create(const OccupancyGrid& grid,
-                                                  const Footprint& footprint, double margin_m) {
+                                                  const Footprint& footprint, double margin_m,
+                                                  double shared_clearance_m) {
   const auto bad = [](const char* name, double value, const char* rule) {
     return invalid_argument(std::string("CollisionChecker: ") + name + " " + rule + " (got " +
                             detail::format_number(value) + ")");
@@ -39,11 +40,17 @@ Result<CollisionChecker> CollisionChecker::create(const OccupancyGrid& grid,
   if (!(std::isfinite(margin_m) && margin_m >= 0.0)) {
     return bad("margin_m", margin_m, "must be finite and >= 0");
   }
+  if (!(std::isfinite(shared_clearance_m) && shared_clearance_m >= 0.0)) {
+    return bad("shared_clearance_m", shared_clearance_m, "must be finite and >= 0");
+  }
   auto clearance = ClearanceMap::create_for(grid);
   if (!clearance.ok()) {
     return clearance.error();
   }
-  return CollisionChecker(grid, footprint, margin_m, std::move(clearance).value());
+  CollisionChecker checker(grid, footprint, margin_m, std::move(clearance).value());
+  checker.exact_d2_ = std::max({checker.fast_free_d2_, checker.disk_free_d2_,
+                                checker.clearance_.squared_cells_at_least(shared_clearance_m)});
+  return checker;
 }
 
 CollisionChecker::CollisionChecker(const OccupancyGrid& grid, const Footprint& footprint,
@@ -96,18 +103,23 @@ CollisionChecker::CollisionChecker(const OccupancyGrid& grid, const Footprint& f
   words_per_row_ = (width_ + 63) / 64;
   blocked_bits_.assign(static_cast<std::size_t>(words_per_row_) * height_, 0);
   fast_free_bits_.assign(static_cast<std::size_t>(words_per_row_) * height_, 0);
-  rebuild_bits();
+  rebuild_bits(0, static_cast<int>(height_) - 1);
 }
 
 void CollisionChecker::refresh() noexcept {
   clearance_.compute(*grid_);
-  rebuild_bits();
+  rebuild_bits(0, static_cast<int>(height_) - 1);
 }
 
-void CollisionChecker::rebuild_bits() noexcept {
+void CollisionChecker::refresh(const CellBox& changed) noexcept {
+  const CellBox rewritten = clearance_.update(*grid_, changed, exact_d2_);
+  if (!rewritten.empty()) rebuild_bits(rewritten.y0, rewritten.y1);
+}
+
+void CollisionChecker::rebuild_bits(int y0, int y1) noexcept {
   const std::span<const Cell> cells = grid_->cells();
   const std::span<const std::uint32_t> d2 = clearance_.squared_cells();
-  for (std::uint32_t y = 0; y < height_; ++y) {
+  for (auto y = static_cast<std::uint32_t>(y0); y <= static_cast<std::uint32_t>(y1); ++y) {
     std::uint64_t* blocked = blocked_bits_.data() + static_cast<std::size_t>(y) * words_per_row_;
     std::uint64_t* fast = fast_free_bits_.data() + static_cast<std::size_t>(y) * words_per_row_;
     for (std::uint32_t k = 0; k < words_per_row_; ++k) {

@@ -163,6 +163,8 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
   const std::span<const Cell> cells = grid.cells();
   const std::uint32_t min_d2 =
       clearance != nullptr ? clearance->squared_cells_at_least(inflation_m) : 0;
+  // A clearance map updated in windows is exact only up to its bound (ClearanceMap::update).
+  GRIP_ASSERT(clearance == nullptr || min_d2 <= clearance->exact_up_to());
   const auto w = static_cast<std::size_t>(width_);
   for (std::size_t y = 0; y < static_cast<std::size_t>(height_); ++y) {
     std::uint8_t* out = traversable_.data() + (y + 1) * padded_width_ + 1;

@@ -60,6 +60,13 @@ struct StateSample {
   bool lockstep = false;
 };
 
+// What the planning thread's map updates changed since it last planned.
+struct MapChanges {
+  bool applied = false;   // some update was applied
+  CellBox newly_blocked;  // cells that stopped being free
+  CellBox changed;        // cells that became free or stopped being free
+};
+
 struct PlanSlot {
   std::uint64_t cycle = 0;
   std::uint64_t start_time_ns = 0;
@@ -194,10 +201,10 @@ class PlannerParticipantFor final : public PlannerParticipant {
   void check_liveliness();
 
   // Planning thread (and run() during start-up, before the planning thread exists).
-  bool apply_tiles(CellBox& newly_blocked) noexcept;
+  bool apply_tiles(MapChanges& changes) noexcept;
   CycleOutcome cycle_body(std::int64_t release_ns, std::int64_t deadline_ns) noexcept;
   void chain_plan_start(std::int64_t release_ns) noexcept;
-  CycleOutcome plan_cycle(std::int64_t started_ns, bool map_changed, const CellBox& newly_blocked,
+  CycleOutcome plan_cycle(std::int64_t started_ns, const MapChanges& changes,
                           std::int64_t deadline_ns) noexcept;
   Result<PlannerParticipantReport> run_lockstep();
 
@@ -578,7 +585,7 @@ void PlannerParticipantFor<V>::check_liveliness() {
 // ---- Planning thread ----
 
 template <VehicleModel V>
-bool PlannerParticipantFor<V>::apply_tiles(CellBox& newly_blocked) noexcept {
+bool PlannerParticipantFor<V>::apply_tiles(MapChanges& changes) noexcept {
   bool applied = false;
   bool batch_complete = false;
   OccupancyGrid& grid = *grid_;
@@ -590,8 +597,12 @@ bool PlannerParticipantFor<V>::apply_tiles(CellBox& newly_blocked) noexcept {
       for (int x = t.box.x0; x <= t.box.x1; ++x) {
         const Cell value = t.cells[static_cast<std::size_t>((y - t.box.y0) * w + (x - t.box.x0))];
         Cell& cell = cells[grid.index(x, y)];
-        // Only cells that stop being free can cut the tree (retain's contract).
-        if (cell == Cell::kFree && value != Cell::kFree) newly_blocked.add(CellBox{x, y, x, y});
+        if ((cell == Cell::kFree) != (value == Cell::kFree)) {
+          // Clearance changes only near cells that became free or stopped being free; only the
+          // latter can cut the tree (retain's contract).
+          changes.changed.add(CellBox{x, y, x, y});
+          if (cell == Cell::kFree) changes.newly_blocked.add(CellBox{x, y, x, y});
+        }
         cell = value;
       }
     }
@@ -599,6 +610,7 @@ bool PlannerParticipantFor<V>::apply_tiles(CellBox& newly_blocked) noexcept {
     map_in_sync_ = t.in_sync;
     batch_complete = t.last_of_batch;
     applied = true;
+    changes.applied = true;
   }
   // The checksum describes a whole hand-over, not a map half way through one.
   if (applied && batch_complete) map_checksum_ = map_checksum(grid);
@@ -610,13 +622,13 @@ template <VehicleModel V>
 CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
                                                   std::int64_t deadline_ns) noexcept {
   const std::int64_t start = platform::now_ns();
-  CellBox newly_blocked;
-  const bool map_changed = apply_tiles(newly_blocked);
+  MapChanges changes;
+  apply_tiles(changes);
   const bool new_state = states_->update();
   if (new_state) note_vehicle_state(states_->read_buffer());
   chain_plan_start(release_ns);
   if (new_state) check_vehicle_follows(states_->read_buffer());
-  return plan_cycle(start, map_changed, newly_blocked, deadline_ns);
+  return plan_cycle(start, changes, deadline_ns);
 }
 
 template <VehicleModel V>
@@ -643,10 +655,12 @@ void PlannerParticipantFor<V>::chain_plan_start(std::int64_t release_ns) noexcep
 // Both modes: the cycle's inputs, growth (until the deadline, or by edge count in lockstep),
 // and the hand-over of its plan and status to the publish thread.
 template <VehicleModel V>
-CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, bool map_changed,
-                                                  const CellBox& newly_blocked,
+CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, const MapChanges& changes,
                                                   std::int64_t deadline_ns) noexcept {
-  if (map_changed) cycle_->note_newly_blocked(newly_blocked);
+  if (changes.applied) {
+    cycle_->note_newly_blocked(changes.newly_blocked);
+    cycle_->note_changed(changes.changed);
+  }
   if (goals_->update()) {
     const GoalRegion& goal = goals_->read_buffer();
     cycle_->set_goal(goal);  // a goal ends exploration
@@ -654,7 +668,7 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, bool map_c
     target_x_m_ = goal.x_m;
     target_y_m_ = goal.y_m;
   }
-  if (exploring_) update_frontier_target(map_changed);
+  if (exploring_) update_frontier_target(changes.applied);
   const auto now = [] { return platform::now_ns(); };
   const auto choose = [this](const Planner<V>& planner) {
     if (!exploring_) return planner.best_state();
@@ -917,7 +931,7 @@ Status PlannerParticipantFor<V>::start_up() {
       grid_.emplace(std::move(grid).value());
     }
     if (grid_) {
-      CellBox ignored;       // no tree yet
+      MapChanges ignored;    // no tree yet
       apply_tiles(ignored);  // this thread is the tiles' consumer until planning starts
     }
     if (states_->update()) state = states_->read_buffer();
@@ -1092,17 +1106,17 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
     }
     have_state = false;
     const std::int64_t start = platform::now_ns();
-    CellBox newly_blocked;
-    bool map_changed = apply_tiles(newly_blocked);
+    MapChanges changes;
+    apply_tiles(changes);
     while (map_sequence_ < state.map_sequence && !stop_.load(std::memory_order_acquire)) {
       static_cast<void>(lockstep_inputs_.wait(std::chrono::milliseconds(50)));
-      map_changed = apply_tiles(newly_blocked) || map_changed;
+      apply_tiles(changes);
     }
     note_vehicle_state(state);
     plan_start_ns_ = state.stamp_ns + cycle_ns;  // t[i] = the state's time + T
     check_vehicle_follows(state);
     CycleRecord record;
-    record.outcome = plan_cycle(start, map_changed, newly_blocked, 0);
+    record.outcome = plan_cycle(start, changes, 0);
     record.cycle = report.cycles++;
     record.release_ns = start;
     record.compute_ns = platform::now_ns() - start;

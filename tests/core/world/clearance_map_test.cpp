@@ -60,6 +60,71 @@ TEST(ClearanceMapTest, MatchesABruteForceTransformOnRandomGrids) {
   }
 }
 
+// Every cell changed at random inside a box, free <-> obstacle or unknown.
+CellBox change_a_box(OccupancyGrid& grid, Random& random) {
+  const int x0 = static_cast<int>(random.below(static_cast<std::uint32_t>(grid.width())));
+  const int y0 = static_cast<int>(random.below(static_cast<std::uint32_t>(grid.height())));
+  const int x1 = std::min(grid.width() - 1, x0 + static_cast<int>(random.below(8)));
+  const int y1 = std::min(grid.height() - 1, y0 + static_cast<int>(random.below(8)));
+  const double density = random.uniform(0.0, 0.6);
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      grid.set(x, y,
+               random.uniform01() >= density ? Cell::kFree
+               : random.below(2) == 0        ? Cell::kObstacle
+                                             : Cell::kUnknown);
+    }
+  }
+  return CellBox{x0, y0, x1, y1};
+}
+
+TEST(ClearanceMapTest, AWindowedUpdateAnswersEveryThresholdUpToItsBoundAsAFullCompute) {
+  // GIVEN random grids changed box by box, the map updated in windows after each change
+  Random random(17);
+  for (int trial = 0; trial < 30; ++trial) {
+    const int w = 5 + static_cast<int>(random.below(60));
+    const int h = 5 + static_cast<int>(random.below(60));
+    OccupancyGrid grid = make_grid(w, h, 0.1);
+    for (int k = 0; k < 6; ++k) change_a_box(grid, random);
+    auto updated = ClearanceMap::create_for(grid);
+    ASSERT_TRUE(updated.ok());
+    const auto bound = static_cast<std::uint32_t>(1 + random.below(40));
+    for (int step = 0; step < 8; ++step) {
+      CellBox changed = change_a_box(grid, random);
+      if (random.below(2) == 0) changed.add(change_a_box(grid, random));
+      const CellBox rewritten = updated->update(grid, changed, bound);
+      // THEN the window holds the change, every d2 up to the bound is exact and every larger
+      // one is larger in both (so any threshold up to the bound compares the same), and the
+      // map follows the grid's revision
+      EXPECT_TRUE(rewritten.x0 <= changed.x0 && rewritten.y0 <= changed.y0 &&
+                  rewritten.x1 >= changed.x1 && rewritten.y1 >= changed.y1);
+      EXPECT_EQ(updated->exact_up_to(), bound);
+      EXPECT_EQ(updated->source_revision(), grid.revision());
+      const ClearanceMap full = ClearanceMap::create_for(grid).value();
+      for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+        const std::uint32_t exact = full.squared_cells(i);
+        const std::uint32_t got = updated->squared_cells(i);
+        if (exact <= bound) {
+          ASSERT_EQ(got, exact) << "trial " << trial << " step " << step << " cell " << i;
+        } else {
+          ASSERT_GT(got, bound) << "trial " << trial << " step " << step << " cell " << i;
+        }
+      }
+    }
+  }
+}
+
+TEST(ClearanceMapTest, AnEmptyChangeOnlyFollowsTheRevision) {
+  OccupancyGrid grid = make_grid(20, 20, 0.1);
+  auto map = ClearanceMap::create_for(grid);
+  ASSERT_TRUE(map.ok());
+  grid.set(3, 3, Cell::kUnknown);
+  grid.set(3, 3, Cell::kObstacle);  // non-free either way: clearance is unchanged
+  EXPECT_TRUE(map->update(grid, CellBox{}, 9).empty());
+  EXPECT_EQ(map->source_revision(), grid.revision());
+  EXPECT_EQ(map->squared_cells(grid.index(4, 3)), 16U) << "unchanged: (3, 3) was not seen";
+}
+
 TEST(ClearanceMapTest, TheOutsideOfTheGridCountsAsNonFree) {
   const OccupancyGrid grid = make_grid(9, 5, 0.5);
   auto map = ClearanceMap::create_for(grid);

@@ -112,6 +112,9 @@ TEST(CollisionCheckerTest, CreateRejectsBadFootprintsAndMarginsNamingThem) {
   expect_error({0.3, 0.2, 0.2}, -0.01, "margin_m", "-0.01");
   expect_error({0.3, 0.2, 0.2}, nan, "margin_m", "nan");
   EXPECT_TRUE(CollisionChecker::create(grid, {0.5, -0.1, 0.2}, 0.0).ok());
+  const auto shared = CollisionChecker::create(grid, {0.3, 0.2, 0.2}, 0.0, -0.5);
+  ASSERT_FALSE(shared.ok());
+  EXPECT_NE(shared.error().message.find("shared_clearance_m"), std::string::npos);
 }
 
 TEST(CollisionCheckerTest, ReportsItsFootprintAndMargin) {
@@ -323,6 +326,48 @@ TEST(CollisionCheckerTest, RefreshPicksUpGridChanges) {
   checker.refresh();
   EXPECT_TRUE(checker.is_free(3.0, 3.0, 0.0));
   EXPECT_TRUE(checker.fast_path_free(3.0, 3.0));
+}
+
+TEST(CollisionCheckerTest, ARefreshNearTheChangeAnswersAsACheckerBuiltAfresh) {
+  // GIVEN a checker whose clearance is also shared up to 0.4 m, on a grid changed box by box
+  Random random(31);
+  OccupancyGrid grid = make_grid(70, 50, 0.1);
+  auto created = CollisionChecker::create(grid, kRobot, 0.02, 0.4);
+  ASSERT_TRUE(created.ok());
+  CollisionChecker checker = std::move(created).value();
+  for (int step = 0; step < 12; ++step) {
+    const int x0 = static_cast<int>(random.below(64));
+    const int y0 = static_cast<int>(random.below(44));
+    const CellBox changed{x0, y0, x0 + 5, y0 + 5};
+    for (int y = changed.y0; y <= changed.y1; ++y) {
+      for (int x = changed.x0; x <= changed.x1; ++x) {
+        grid.set(x, y, random.below(3) == 0 ? Cell::kObstacle : Cell::kFree);
+      }
+    }
+    // WHEN it is refreshed near the change only
+    ASSERT_TRUE(checker.stale());
+    checker.refresh(changed);
+    ASSERT_FALSE(checker.stale());
+    // THEN it answers every pose, on both paths, as a checker created on the new grid, and a
+    // distance field sharing its clearance finds the same cells traversable
+    const CollisionChecker fresh = make_checker(grid, kRobot, 0.02);
+    for (int n = 0; n < 1500; ++n) {
+      const double x = random.uniform(0.0, grid.width_m());
+      const double y = random.uniform(0.0, grid.height_m());
+      const double theta = random.uniform(-4.0, 4.0);
+      ASSERT_EQ(checker.is_free(x, y, theta), fresh.is_free(x, y, theta))
+          << "step " << step << " pose " << x << ", " << y << ", " << theta;
+      ASSERT_EQ(checker.fast_path_free(x, y), fresh.fast_path_free(x, y))
+          << "step " << step << " at " << x << ", " << y;
+    }
+    const std::uint32_t at_least = checker.clearance().squared_cells_at_least(0.4);
+    ASSERT_LE(at_least, checker.clearance().exact_up_to());
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      ASSERT_EQ(checker.clearance().squared_cells(i) >= at_least,
+                fresh.clearance().squared_cells(i) >= at_least)
+          << "step " << step << " cell " << i;
+    }
+  }
 }
 
 TEST(CollisionCheckerTest, AnOffsetGridOriginIsHonoured) {

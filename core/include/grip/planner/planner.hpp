@@ -161,6 +161,14 @@ class Planner {
   RetainStatus restart(const State& q, GoalCells goal, double horizon_s,
                        RhoUpdate rho = RhoUpdate::kRecompute) noexcept;
   const RetainStats& last_retain() const noexcept { return retain_stats_; }
+  // Where cells changed between free and non-free since the last retain() or restart(), when
+  // the caller knows (e.g. a cycle's map updates): the collision checker's clearance is then
+  // refreshed only near them (ClearanceMap::update) rather than over the whole map. Notes add
+  // up until the next retain() or restart(); without any, a changed grid is refreshed whole.
+  void note_changed(const CellBox& box) noexcept {
+    changed_.add(box);
+    changed_noted_ = true;
+  }
 
   // Grows the tree until the goal is reached, should_stop() returns true (checked once per
   // iteration), or the pools are exhausted.
@@ -271,6 +279,9 @@ class Planner {
   PlannerConfig config_;
   const OccupancyGrid* grid_;
   CollisionChecker checker_;
+  CellBox changed_;  // note_changed() since the last refresh of the checker
+  bool changed_noted_ = false;
+  void refresh_checker() noexcept;
   DistanceField rho_field_;
   Tree<State> tree_;
   IndexedMinHeap heap_;

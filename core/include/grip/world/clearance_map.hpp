@@ -33,6 +33,20 @@ class ClearanceMap {
 
   // Recomputes from the grid. Asserts the grid has this map's width, height and resolution.
   void compute(const OccupancyGrid& grid) noexcept;
+  // The same after a change confined to `changed` (no cell outside it changed between free and
+  // non-free since the last compute() or update()), in O(window) rather than O(cells): the
+  // window is `changed` grown by about sqrt(exact_up_to_d2) cells. Afterwards every d2 up to
+  // exact_up_to_d2 is exact, and a cell whose exact d2 is larger holds some d2 that is larger
+  // too, so any comparison of d2 with a threshold up to exact_up_to_d2 answers as after
+  // compute(); that is all the collision checker and the distance field ask (exact_up_to()
+  // tells the bound). Returns the cells rewritten (the window). Why: in exploration the map
+  // changes every cycle, near the vehicle, and a whole-map pass would be paid on the planning
+  // thread each time. Asserts compute() ran first.
+  CellBox update(const OccupancyGrid& grid, const CellBox& changed,
+                 std::uint32_t exact_up_to_d2) noexcept;
+  // The largest d2 known exact (UINT32_MAX after compute(); the smallest bound of the updates
+  // since).
+  std::uint32_t exact_up_to() const noexcept { return exact_up_to_d2_; }
 
   int width() const noexcept { return width_; }
   int height() const noexcept { return height_; }
@@ -65,8 +79,10 @@ class ClearanceMap {
   double half_diagonal_m_;
   std::uint64_t source_revision_ = 0;
   bool computed_ = false;
+  std::uint32_t exact_up_to_d2_ = 0;
   std::vector<std::uint32_t> d2_;
-  // Scratch for the transform, sized at creation.
+  // Scratch for the transform, sized at creation (column distances of update()'s window).
+  std::vector<std::uint32_t> columns_;
   std::vector<std::int64_t> f_;
   std::vector<std::int64_t> d_;
   std::vector<int> v_;

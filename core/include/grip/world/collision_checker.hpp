@@ -35,9 +35,12 @@ namespace grip {
 class CollisionChecker {
  public:
   // Errors (kInvalidArgument): a non-finite footprint size, half_width_m <= 0,
-  // front_m + rear_m <= 0, margin_m negative or not finite. Computes the clearance map.
+  // front_m + rear_m <= 0, margin_m negative or not finite, shared_clearance_m negative or not
+  // finite. Computes the clearance map. shared_clearance_m: the largest clearance others ask of
+  // clearance() (e.g. the inflation of a DistanceField sharing it); refresh(changed) keeps
+  // clearance exact up to it as well as up to what the checker itself needs.
   static Result<CollisionChecker> create(const OccupancyGrid& grid, const Footprint& footprint,
-                                         double margin_m);
+                                         double margin_m, double shared_clearance_m = 0.0);
 
   // True iff the grown chassis at (x_m, y_m, theta_rad) touches only known-free cells inside
   // the grid. Non-finite input is never free.
@@ -64,6 +67,9 @@ class CollisionChecker {
   // Takes a new snapshot of the grid: recomputes the clearance map and the checker's bit grids
   // (O(cells), no allocation). Both paths answer for the grid as of the last refresh().
   void refresh() noexcept;
+  // The same when the grid changed only inside `changed` (between free and non-free) since the
+  // last refresh: O(cells near it) (ClearanceMap::update), the same answers.
+  void refresh(const CellBox& changed) noexcept;
   // True when the grid changed since the last refresh (or creation).
   bool stale() const noexcept { return grid_->revision() != clearance_.source_revision(); }
 
@@ -82,7 +88,7 @@ class CollisionChecker {
   const OccupancyGrid* grid_;
   Footprint footprint_;
   double margin_m_;
-  void rebuild_bits() noexcept;
+  void rebuild_bits(int y0, int y1) noexcept;  // rows y0..y1
   // Second tier: the grown rectangle is covered by disks along its axis; if the clearance map
   // clears every disk the answer is "free", else the exact test decides.
   bool covering_disks_or_exact(double x_m, double y_m, double theta_rad) const noexcept;
@@ -95,6 +101,7 @@ class CollisionChecker {
 
   ClearanceMap clearance_;
   std::uint32_t fast_free_d2_;  // fast path: free when d2 of the reference cell exceeds this
+  std::uint32_t exact_d2_;      // the largest d2 any user compares with (refresh(changed))
   // Bit grids, one bit per cell, rows of words_per_row_ 64-bit words (the last word of a row
   // is never read past; bits beyond the width are set in blocked_bits_):
   std::uint32_t words_per_row_;

@@ -84,6 +84,10 @@ class ReplanningCycle {
     blocked_noted_ = true;
   }
 
+  // Where cells became free or stopped being free since the last cycle: the planner refreshes
+  // its clearance only near it (Planner::note_changed). Every change must be noted, or none.
+  void note_changed(const CellBox& box) noexcept { planner_.note_changed(box); }
+
   // The vehicle is not where the plans put it (it brakes or rests on its contingency): the
   // next cycle starts a fresh tree at q, the state the vehicle will hold at its start.
   void resynchronise(const State& q) noexcept { resync_ = q; }
