@@ -92,7 +92,12 @@ void PeriodicLoop::planner_main(const platform::RealtimeThreadInfo& /*info*/) no
       alloc_counter::arm();
     }
     CycleRecord record;
-    record.outcome = body_(release, release + budget);
+    // Woken after the next release is already due (a stall longer than a period): this cycle's
+    // work could only serve a time that has passed. It is skipped, and counted as missed, so
+    // that the loop is back on its timeline at the next release instead of running one hurried
+    // cycle after another.
+    record.skipped = wake >= release + period;
+    if (!record.skipped) record.outcome = body_(release, release + budget);
     const std::int64_t end = platform::now_ns();
     record.cycle = k;
     record.release_ns = release;

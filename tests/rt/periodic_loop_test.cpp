@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <string>
@@ -89,20 +90,60 @@ TEST(PeriodicLoop, ReleasesEveryCycleOnOneTimelineAndRecordsEachInOrder) {
   ASSERT_TRUE(loop.ok()) << loop.error().message;
   const std::vector<CycleRecord> records = drain(**loop);
 
-  // THEN each cycle ran once, released exactly one period after the one before, with the budget
-  // as its deadline, and its record carries the body's outcome, in order
+  // THEN there is a record per release, in order, one period apart; the body ran for every
+  // release not skipped (only a stall longer than a period skips one), with the budget as its
+  // deadline, and each record carries that run's outcome
   ASSERT_EQ(records.size(), 12U);
-  ASSERT_EQ(releases.size(), 12U);
+  std::size_t ran = 0;
   for (std::size_t k = 0; k < records.size(); ++k) {
     EXPECT_EQ(records[k].cycle, k);
-    EXPECT_EQ(records[k].release_ns, releases[k]);
-    EXPECT_EQ(deadlines[k], releases[k] + c.budget.count());
-    EXPECT_EQ(records[k].outcome.edges_added, k + 1);
     EXPECT_GE(records[k].wake_latency_ns, 0) << "woke before its release";
     if (k > 0) {
-      EXPECT_EQ(releases[k] - releases[k - 1], c.period.count());
+      EXPECT_EQ(records[k].release_ns - records[k - 1].release_ns, c.period.count());
     }
+    if (records[k].skipped) continue;
+    ASSERT_LT(ran, releases.size());
+    EXPECT_EQ(records[k].release_ns, releases[ran]);
+    EXPECT_EQ(deadlines[ran], releases[ran] + c.budget.count());
+    EXPECT_EQ(records[k].outcome.edges_added, ran + 1);
+    ++ran;
   }
+  EXPECT_EQ(ran, releases.size());
+}
+
+TEST(PeriodicLoop, AReleaseWokenWhenTheNextIsDueIsSkippedAndCountedAsMissed) {
+  // GIVEN a loop whose body stalls for three and a half periods on its third run
+  const PeriodicLoopConfig c = config(platform::PolicyRequest::kOther, 10);
+  std::vector<std::int64_t> releases;
+  releases.reserve(10);
+  auto loop = PeriodicLoop::start(c, [&](std::int64_t release, std::int64_t) {
+    releases.push_back(release);
+    if (releases.size() == 3) std::this_thread::sleep_for(c.period * 7 / 2);
+    return CycleOutcome{};
+  });
+  ASSERT_TRUE(loop.ok()) << loop.error().message;
+  const std::vector<CycleRecord> records = drain(**loop);
+  ASSERT_EQ(records.size(), 10U);
+  ASSERT_GE(releases.size(), 3U);
+  std::size_t stalled = 0;
+  while (stalled < records.size() && records[stalled].release_ns != releases[2]) ++stalled;
+  ASSERT_LT(stalled + 2, records.size());
+
+  // THEN the stalled cycle missed, and the two releases whose successors were due when the
+  // thread woke are skipped: missed, without a body; every other record is of a body that ran
+  // at its own release
+  EXPECT_TRUE(records[stalled].missed);
+  for (const std::size_t k : {stalled + 1, stalled + 2}) {
+    EXPECT_TRUE(records[k].skipped) << k;
+    EXPECT_TRUE(records[k].missed) << k;
+  }
+  std::size_t ran = 0;
+  for (const CycleRecord& r : records) {
+    const auto runs = std::count(releases.begin(), releases.end(), r.release_ns);
+    EXPECT_EQ(runs, r.skipped ? 0 : 1) << r.cycle;
+    ran += r.skipped ? 0 : 1;
+  }
+  EXPECT_EQ(ran, releases.size());
 }
 
 TEST(PeriodicLoop, TheKernelHoldsThePlanningThreadToAnImplicitDeadlineReservation) {

@@ -30,6 +30,7 @@ struct CycleRecord {
   std::int64_t compute_ns = 0;       // wake-up to the end of the cycle body
   std::int64_t lateness_ns = 0;      // end of the body minus the deadline (negative: early)
   bool missed = false;               // ended after its deadline
+  bool skipped = false;  // woken when the next release was already due: no body ran (missed)
   CycleOutcome outcome;
 };
 
@@ -61,7 +62,8 @@ struct PeriodicLoopResult {
 
 class PeriodicLoop {
  public:
-  // body(release_ns, deadline_ns) runs on the planning thread once per release; it must not
+  // body(release_ns, deadline_ns) runs on the planning thread once per release (except a release
+  // woken only when the next was already due: skipped, see CycleRecord); it must not
   // allocate, block or throw.
   using Body = std::function<CycleOutcome(std::int64_t, std::int64_t)>;
   static constexpr std::size_t kRingCapacity = 4096;
