@@ -312,8 +312,9 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     planner = std::move(created).value();
     planner_thread = std::thread([&] { planner_result = planner->run(); });
   }
-  const auto run =
-      sim::run_simulation(sim_config(o, *robot, *world), world->truth, g_stop, progress_line());
+  sim::SimRunConfig config = sim_config(o, *robot, *world);
+  if (planner) config.on_finished = [&planner] { planner->request_stop(); };
+  const auto run = sim::run_simulation(config, world->truth, g_stop, progress_line());
   if (isatty(STDERR_FILENO) == 1) std::cerr << "\n";
   if (planner) {
     planner->request_stop();

@@ -572,7 +572,8 @@ void PlannerParticipantFor<V>::check_liveliness() {
   const auto live = dds_.states.liveliness_changed();
   if (!live.ok()) return;
   const bool alive = live->alive_count > 0;
-  if (was_alive_ && !alive) {
+  // Once planning has been told to stop, the vehicle leaving is the end of the run, not a loss.
+  if (was_alive_ && !alive && !stop_.load(std::memory_order_acquire)) {
     counters_.vehicle_losses.fetch_add(1, std::memory_order_relaxed);
     std::fprintf(stderr,
                  "grip planner: vehicle controller lost (liveliness); planning goes on with the "

@@ -258,6 +258,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     }
   }
   if (stop.load() && report.result == "error") report.reason = "stopped";
+  if (config.on_finished) config.on_finished();
 
   const ExecutorStats& stats = executor->stats();
   report.coverage = coverage_of(sensed, *reachable);

@@ -49,6 +49,9 @@ struct SimRunConfig {
   double stuck_after_s = 300.0;
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
   std::chrono::nanoseconds planner_wait{std::chrono::seconds(30)};  // for the first plan
+  // Called once the run has ended, before the simulator leaves DDS: a planner in the same
+  // process can be stopped first, rather than report the vehicle lost.
+  std::function<void()> on_finished;
 };
 
 struct SimCollision {
