@@ -27,12 +27,18 @@ Result<std::unique_ptr<PeriodicLoop>> PeriodicLoop::start(const PeriodicLoopConf
   }
   if (!body) return invalid_argument("periodic loop: no cycle body");
   std::unique_ptr<PeriodicLoop> loop(new PeriodicLoop(config, std::move(body)));
+  // Memory is locked before the timeline is set: mlockall faults in every page of the process
+  // and took over a second on a loaded machine here, so that the first releases had passed
+  // before the thread existed.
+  const platform::MemoryLockOutcome memory =
+      config.lock_memory ? platform::lock_process_memory()
+                         : platform::MemoryLockOutcome{false, "not requested"};
   // Both threads share one absolute timeline, starting after their set-up.
   loop->first_release_ns_ = platform::now_ns() + 200'000'000;
 
   platform::RealtimeThreadConfig planner_config;
   planner_config.name = config.name;
-  planner_config.lock_memory = config.lock_memory;
+  planner_config.lock_memory = false;  // done above
   planner_config.scheduling.request = config.policy;
   // The reservation's deadline is the period (an implicit deadline), not the budget: the budget
   // is this loop's deadline, measured against its own timeline. A constrained deadline (below
@@ -57,6 +63,7 @@ Result<std::unique_ptr<PeriodicLoop>> PeriodicLoop::start(const PeriodicLoopConf
     if (!reference) return reference.error();
     loop->reference_.emplace(std::move(reference).value());
     loop->result_.reference_thread = loop->reference_->info();
+    loop->result_.reference_thread->memory = memory;
   }
   auto planner = platform::RealtimeThread::start(
       planner_config,
@@ -67,6 +74,7 @@ Result<std::unique_ptr<PeriodicLoop>> PeriodicLoop::start(const PeriodicLoopConf
   }
   loop->planner_.emplace(std::move(planner).value());
   loop->result_.planner_thread = loop->planner_->info();
+  loop->result_.planner_thread.memory = memory;
   return loop;
 }
 

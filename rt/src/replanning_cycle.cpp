@@ -53,6 +53,16 @@ void ReplanningCycle<V>::set_goal(GoalCells goal) noexcept {
   }
   goal_is_cells_ = true;
   goal_changed_ = true;
+  rho_adopted_ = false;
+}
+
+template <VehicleModel V>
+void ReplanningCycle<V>::set_goal(GoalCells goal, DistanceField& rho) noexcept {
+  set_goal(goal);
+  if (planner_.adopt_goal(GoalCells{goal_cells_.span()}, rho) == RetainStatus::kOk) {
+    goal_changed_ = false;
+    rho_adopted_ = true;
+  }
 }
 
 template <VehicleModel V>
@@ -144,9 +154,10 @@ CycleOutcome ReplanningCycle<V>::run_growing(
   // 1. The new root: T along the committed plan, when the plan covers T (or the root itself,
   // for a vehicle resting there without a plan).
   const TreeState next_root = resync_ ? TreeState{} : this->next_root();
-  const RhoUpdate rho = goal_changed_ || cycles_since_rho_ + 1 >= config_.rho_refresh_cycles
-                            ? RhoUpdate::kRecompute
-                            : RhoUpdate::kKeep;
+  const RhoUpdate rho =
+      !rho_adopted_ && (goal_changed_ || cycles_since_rho_ + 1 >= config_.rho_refresh_cycles)
+          ? RhoUpdate::kRecompute
+          : RhoUpdate::kKeep;
   if (next_root.edge != kNoHandle) {
     const CellBox* blocked = blocked_noted_ ? &newly_blocked_ : nullptr;
     out.retain_status = goal_is_cells_
@@ -174,8 +185,9 @@ CycleOutcome ReplanningCycle<V>::run_growing(
     committed_ = TreeState{};  // the new map or T cut the rest of the previous plan
   }
 
-  cycles_since_rho_ = rho == RhoUpdate::kRecompute ? 0 : cycles_since_rho_ + 1;
+  cycles_since_rho_ = rho == RhoUpdate::kRecompute || rho_adopted_ ? 0 : cycles_since_rho_ + 1;
   goal_changed_ = false;
+  rho_adopted_ = false;
   newly_blocked_ = CellBox{};
   blocked_noted_ = false;
   out.retain_ns = now_ns() - cycle_start;

@@ -29,16 +29,20 @@ Result<ExplorationTarget> ExplorationTarget::create(const OccupancyGrid& like,
   auto frontiers =
       FrontierMap::create(like.width(), like.height(), like.resolution(), config.frontier);
   if (!frontiers) return frontiers.error();
+  auto rho = DistanceField::create(like.width(), like.height(), like.resolution());
+  if (!rho) return rho.error();
   return ExplorationTarget(config, like, std::move(clearance).value(),
-                           std::move(frontiers).value());
+                           std::move(frontiers).value(), std::move(rho).value());
 }
 
 ExplorationTarget::ExplorationTarget(const ExplorationTargetConfig& config, OccupancyGrid map,
-                                     ClearanceMap clearance, FrontierMap frontiers)
+                                     ClearanceMap clearance, FrontierMap frontiers,
+                                     DistanceField rho)
     : config_(config),
       map_(std::move(map)),
       clearance_(std::move(clearance)),
-      frontiers_(std::move(frontiers)) {}
+      frontiers_(std::move(frontiers)),
+      rho_(std::move(rho)) {}
 
 void ExplorationTarget::copy_map(const OccupancyGrid& map) noexcept {
   GRIP_ASSERT(map.width() == map_.width() && map.height() == map_.height() &&
@@ -54,6 +58,7 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
   if (map_changed) clearance_.compute(map_);
   const ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m);
   if (status != ExplorationStatus::kTarget) return status;
+  rho_.compute(map_, clearance_, frontiers_.approach_cells(), config_.frontier.clearance_m);
   const FrontierGroup& group = frontiers_.groups()[frontiers_.target()];
   if (group.nearest_cell != FrontierGroup::kNoCell) {
     const double x = map_.cell_center_x(map_.cell_x(group.nearest_cell));

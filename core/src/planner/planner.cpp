@@ -237,7 +237,7 @@ void Planner<V>::refresh_checker() noexcept {
 }
 
 template <VehicleModel V>
-RetainStatus Planner<V>::set_goal(GoalSpec goal) noexcept {
+RetainStatus Planner<V>::set_goal_cells(GoalSpec goal) noexcept {
   const std::uint32_t cell_count = grid_->cell_count();
   int gx = 0;
   int gy = 0;
@@ -281,7 +281,24 @@ RetainStatus Planner<V>::set_goal(GoalSpec goal) noexcept {
   if (goal_cells_.empty()) return RetainStatus::kGoalWithoutFreeCell;
   goal_is_disk_ = goal.disk != nullptr;
   if (goal_is_disk_) goal_ = *goal.disk;
+  return RetainStatus::kOk;
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::set_goal(GoalSpec goal) noexcept {
+  if (const RetainStatus s = set_goal_cells(goal); s != RetainStatus::kOk) return s;
   rho_field_.compute(*grid_, checker_.clearance(), goal_cells_.span(), config_.rho_clearance_m);
+  return RetainStatus::kOk;
+}
+
+template <VehicleModel V>
+RetainStatus Planner<V>::adopt_goal(GoalCells goal, DistanceField& rho) noexcept {
+  GRIP_ASSERT(rho.width() == grid_->width() && rho.height() == grid_->height() &&
+              rho.resolution() == grid_->resolution());
+  if (const RetainStatus s = set_goal_cells(GoalSpec{nullptr, goal.cells}); s != RetainStatus::kOk) {
+    return s;
+  }
+  std::swap(rho_field_, rho);
   return RetainStatus::kOk;
 }
 

@@ -306,7 +306,8 @@ class PlannerParticipantFor final : public PlannerParticipant {
   std::uint64_t last_state_stamp_ns_ = 0;
   std::uint64_t resyncs_ = 0;
   std::uint64_t cycles_ = 0;
-  std::uint64_t misses_ = 0;
+  std::uint64_t misses_ = 0;          // cycles that ended after their deadline, or were skipped
+  std::int64_t last_release_ns_ = 0;  // real time: the release of the last cycle run
   std::uint64_t plans_committed_ = 0;
   std::uint64_t map_sequence_ = 0;
   std::uint64_t map_checksum_ = 0;
@@ -623,6 +624,12 @@ template <VehicleModel V>
 CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
                                                   std::int64_t deadline_ns) noexcept {
   const std::int64_t start = platform::now_ns();
+  // Releases the loop skipped after a stall (PeriodicLoop) were missed too.
+  const std::int64_t period = period_wall_ns_.load(std::memory_order_relaxed);
+  if (last_release_ns_ != 0 && release_ns - last_release_ns_ > period) {
+    misses_ += static_cast<std::uint64_t>((release_ns - last_release_ns_) / period - 1);
+  }
+  last_release_ns_ = release_ns;
   MapChanges changes;
   apply_tiles(changes);
   const bool new_state = states_->update();
@@ -808,7 +815,7 @@ void PlannerParticipantFor<V>::request_frontier_target() noexcept {
 // Planning thread, with target_ its own (kChosen, or lockstep).
 template <VehicleModel V>
 void PlannerParticipantFor<V>::apply_frontier_target() noexcept {
-  const ExplorationTarget& target = *target_;
+  ExplorationTarget& target = *target_;
   frontier_groups_ = target.groups();
   frontier_groups_given_up_ = target.given_up_groups();
   const ExplorationStatus status = target.status();
@@ -822,7 +829,7 @@ void PlannerParticipantFor<V>::apply_frontier_target() noexcept {
   explored_ = false;
   target_x_m_ = target.target_x_m();
   target_y_m_ = target.target_y_m();
-  cycle_->set_goal(GoalCells{target.approach_cells()});
+  cycle_->set_goal(GoalCells{target.approach_cells()}, target.rho());
   selector_->set_target(*grid_, target.target_cells());
 }
 
@@ -1006,7 +1013,10 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
         std::to_string(margin_ms) + " ms");
   }
   cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
-  cycle_config.rho_refresh_cycles = config_.target_refresh_cycles;
+  // Exploring, rho comes with each target (ExplorationTarget::rho); in real time the target
+  // thread takes a cycle, so the planner's own refresh is only a fallback for a late target.
+  cycle_config.rho_refresh_cycles =
+      explore && !lockstep_ ? 2 * config_.target_refresh_cycles + 1 : config_.target_refresh_cycles;
   auto cycle = ReplanningCycle<V>::create(vehicle_, *grid_, planner_config, cycle_config);
   if (!cycle) return cycle.error();
   cycle_.emplace(std::move(cycle).value());

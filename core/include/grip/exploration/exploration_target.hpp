@@ -6,7 +6,8 @@
 //
 // It works on its own copy of the map, so that a runtime can run it beside the planning thread
 // (clearance, the frontier wavefront and the grouping are whole-map passes of milliseconds) and
-// hand its result over, or inline where a run must be reproducible (lockstep).
+// hand its result over, or inline where a run must be reproducible (lockstep). For the same
+// reason it also computes the planner's rho toward the approach cells (Planner::adopt_goal).
 //
 // Giving up: a target the vehicle gets no closer to (its rho_A* down by progress_m) for
 // give_up_after_s of vehicle time is given up (FrontierMap::give_up), and the next choice takes
@@ -24,6 +25,7 @@
 #include "grip/common/result.hpp"
 #include "grip/exploration/frontier.hpp"
 #include "grip/world/clearance_map.hpp"
+#include "grip/world/distance_field.hpp"
 #include "grip/world/occupancy_grid.hpp"
 
 namespace grip {
@@ -66,15 +68,21 @@ class ExplorationTarget {
   }
   std::uint32_t given_up_groups() const noexcept { return frontiers_.given_up_groups(); }
   const OccupancyGrid& map() const noexcept { return map_; }
+  // rho_A* toward approach_cells() on this map, with the planner's inflation
+  // (frontier.clearance_m, which equals PlannerConfig::rho_clearance_m), for Planner::adopt_goal;
+  // the caller may swap its contents for another field of the same size until the next
+  // choose(), which overwrites it. Computed when status() is kTarget.
+  DistanceField& rho() noexcept { return rho_; }
 
  private:
   ExplorationTarget(const ExplorationTargetConfig& config, OccupancyGrid map,
-                    ClearanceMap clearance, FrontierMap frontiers);
+                    ClearanceMap clearance, FrontierMap frontiers, DistanceField rho);
 
   ExplorationTargetConfig config_;
   OccupancyGrid map_;
   ClearanceMap clearance_;
   FrontierMap frontiers_;
+  DistanceField rho_;
   bool map_changed_ = true;  // since the last choose(): clearance is recomputed
   double target_x_m_ = 0.0;
   double target_y_m_ = 0.0;

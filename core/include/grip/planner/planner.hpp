@@ -161,6 +161,14 @@ class Planner {
   RetainStatus restart(const State& q, GoalCells goal, double horizon_s,
                        RhoUpdate rho = RhoUpdate::kRecompute) noexcept;
   const RetainStats& last_retain() const noexcept { return retain_stats_; }
+  // F as a set of cells with rho toward it computed elsewhere (beside the planning thread, on
+  // a copy of the map: ExplorationTarget), so that no whole-map wavefront runs here: F becomes
+  // `goal` and rho_field() becomes `rho`, which receives the previous field in exchange (no
+  // copy). `rho` must be a field of this grid's size computed toward these cells with inflation
+  // rho_clearance_m; rho only orders the search, so one computed on a map a cycle older will
+  // do. The next retain() or restart() with RhoUpdate::kKeep plans toward it. Errors as for
+  // retain() with cells; on an error nothing changes.
+  RetainStatus adopt_goal(GoalCells goal, DistanceField& rho) noexcept;
   // Where cells changed between free and non-free since the last retain() or restart(), when
   // the caller knows (e.g. a cycle's map updates): the collision checker's clearance is then
   // refreshed only near them (ClearanceMap::update) rather than over the whole map. Notes add
@@ -244,7 +252,8 @@ class Planner {
                                RhoUpdate rho) noexcept;
   RetainStatus retain_towards(TreeState new_root, GoalSpec goal, double horizon_s,
                               const CellBox* newly_blocked, RhoUpdate rho) noexcept;
-  RetainStatus set_goal(GoalSpec goal) noexcept;
+  RetainStatus set_goal(GoalSpec goal) noexcept;        // F, then rho's wavefront toward it
+  RetainStatus set_goal_cells(GoalSpec goal) noexcept;  // F alone
   bool in_goal_region(const State& q) const noexcept;
   void set_horizon(double horizon_s) noexcept;
   void reset_tree(const State& q) noexcept;

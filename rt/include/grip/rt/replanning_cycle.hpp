@@ -70,10 +70,16 @@ class ReplanningCycle {
     goal_ = goal;
     goal_is_cells_ = false;
     goal_changed_ = true;
+    rho_adopted_ = false;
   }
   // The same as a set of cells (exploration: a frontier group's approach cells), copied; cells
   // beyond the grid's cell count are dropped.
   void set_goal(GoalCells goal) noexcept;
+  // The same with rho toward it computed elsewhere (Planner::adopt_goal; `rho` receives the
+  // previous field): the cycles that follow keep it rather than run the wavefront themselves,
+  // and rho_refresh_cycles counts from here. Should the planner refuse it, the next cycle
+  // computes rho toward `goal` itself.
+  void set_goal(GoalCells goal, DistanceField& rho) noexcept;
   const GoalRegion& goal() const noexcept { return goal_; }
 
   // Where cells became non-free since the last cycle (map updates): the next retainment checks
@@ -135,6 +141,7 @@ class ReplanningCycle {
   BoundedVector<std::uint32_t> goal_cells_;
   bool goal_is_cells_ = false;  // the target is goal_cells_, not goal_
   bool goal_changed_ = true;    // since the last retainment or restart
+  bool rho_adopted_ = false;    // rho toward the goal came with it (set_goal with a field)
   std::uint32_t cycles_since_rho_ = 0;
   TreeState committed_;  // end of the committed plan in the tree; empty: braking
   CellBox newly_blocked_;
