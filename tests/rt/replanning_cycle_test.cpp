@@ -132,6 +132,44 @@ TEST_F(ReplanningCycleTest, RhoTowardAnUnchangedTargetIsRecomputedEveryRefreshCy
   EXPECT_EQ(rho.source_revision(), scene.grid.revision());
 }
 
+TEST_F(ReplanningCycleTest, ATargetGivenWithItsRhoIsPlannedTowardWithoutAWavefrontHere) {
+  config.rho_refresh_cycles = 3;
+  SetUp();
+  (void)run_cycle();
+  // GIVEN rho toward target cells computed on a copy of the map (as the target thread does),
+  // told apart from the planner's own by the copy's revision
+  OccupancyGrid copy = scene.grid;
+  for (int i = 0; i < 1000; ++i) copy.mark_changed();
+  std::vector<std::uint32_t> cells;
+  for (int x = 0; x < 10; ++x) {
+    int cx = 0;
+    int cy = 0;
+    ASSERT_TRUE(copy.to_cell(scene.goal_x_m + 0.1 * x, scene.goal_y_m, cx, cy));
+    cells.push_back(copy.index(cx, cy));
+  }
+  DistanceField field =
+      DistanceField::create(copy.width(), copy.height(), copy.resolution()).value();
+  field.compute(copy, ClearanceMap::create_for(copy).value(), cells,
+                cycle->planner().config().rho_clearance_m);
+  const DistanceField& rho = cycle->planner().rho_field();
+
+  // WHEN the cycle is given the target with it and runs on a changed map
+  cycle->set_goal(GoalCells{cells}, field);
+  const auto run_after_map_change = [&](int i) {
+    const double x = 14.0 + 0.1 * i;
+    scene.grid.fill_rect(x, 29.0, x + 0.05, 29.05, Cell::kObstacle);
+    EXPECT_EQ(run_cycle().retain_status, RetainStatus::kOk);
+  };
+  // THEN the planner plans with the field given, not one of its own, counting it as fresh:
+  // kept in that cycle and two more, recomputed on the third cycle after it
+  for (int i = 1; i <= 3; ++i) {
+    run_after_map_change(i);
+    EXPECT_EQ(rho.source_revision(), copy.revision()) << "cycle " << i;
+  }
+  run_after_map_change(4);
+  EXPECT_EQ(rho.source_revision(), scene.grid.revision());
+}
+
 TEST_F(ReplanningCycleTest, AVehicleRestingWithoutAPlanKeepsGrowingTheSameTree) {
   // Choosing the root commits nothing: the vehicle rests where the tree starts, so each cycle
   // carries the tree over instead of restarting it and its growth accumulates.

@@ -59,6 +59,14 @@ TEST_F(ExplorationTargetTest, ChoosesWhatTheFrontierMapChoosesOnItsCopyOfTheMap)
   const FrontierGroup& group = frontiers.groups()[frontiers.target()];
   EXPECT_DOUBLE_EQ(target->target_x_m(), map.cell_center_x(map.cell_x(group.nearest_cell)));
   EXPECT_DOUBLE_EQ(target->target_y_m(), map.cell_center_y(map.cell_y(group.nearest_cell)));
+  // AND rho toward the approach cells is the planner's (the frontier clearance as inflation)
+  DistanceField rho = DistanceField::create(80, 40, 0.1).value();
+  rho.compute(map, clearance, frontiers.approach_cells(), config.frontier.clearance_m);
+  for (std::uint32_t c = 0; c < map.cell_count(); ++c) {
+    const double x = map.cell_center_x(map.cell_x(c));
+    const double y = map.cell_center_y(map.cell_y(c));
+    ASSERT_DOUBLE_EQ(target->rho().distance_m(x, y), rho.distance_m(x, y)) << x << ", " << y;
+  }
 }
 
 TEST_F(ExplorationTargetTest, ReadsOnlyTheMapCopiedIntoIt) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -219,6 +221,59 @@ TEST_F(RetainmentTest, RestartingInTheSameStateDrawsNewSamplesAndKeepsRhoOnReque
   EXPECT_EQ(planner->stats().edges_added, 0U);
   grow(1);
   EXPECT_EQ(first_control(), before);
+}
+
+TEST_F(RetainmentTest, AGoalAdoptedWithItsRhoPlansAsOneWhoseRhoThePlannerComputed) {
+  // GIVEN rho toward a set of cells computed outside the planner, as the target thread does
+  grow(300);
+  std::vector<std::uint32_t> cells;
+  for (int x = 100; x < 110; ++x) cells.push_back(grid.index(x, 20));  // near (10.5, 2.05)
+  DistanceField field =
+      DistanceField::create(grid.width(), grid.height(), grid.resolution()).value();
+  const ClearanceMap clearance = ClearanceMap::create_for(grid).value();
+  field.compute(grid, clearance, cells, config.rho_clearance_m);
+  Planner<DdAcceleration> computed = Planner<DdAcceleration>::create(robot, grid, config).value();
+  ASSERT_TRUE(computed.set_problem(robot.rest_state(2, 2, 0.7), GoalCells{cells}));
+
+  // WHEN the planner adopts it with the cells and retains without recomputing
+  ASSERT_EQ(planner->adopt_goal(GoalCells{cells}, field), RetainStatus::kOk);
+  ASSERT_EQ(
+      planner->retain(planner->root_state(), GoalCells{cells}, 1.0, nullptr, RhoUpdate::kKeep),
+      RetainStatus::kOk);
+
+  // THEN its rho is the one a planner computes itself toward those cells
+  for (std::uint32_t c = 0; c < grid.cell_count(); c += 37) {
+    const double x = grid.cell_center_x(grid.cell_x(c));
+    const double y = grid.cell_center_y(grid.cell_y(c));
+    ASSERT_DOUBLE_EQ(planner->rho_field().distance_m(x, y), computed.rho_field().distance_m(x, y))
+        << x << ", " << y;
+  }
+  expect_pools_consistent();
+
+  // WHEN the adopted F holds the root's own cell THEN the tree is solved at once: F is the
+  // adopted cells
+  EXPECT_FALSE(planner->solved());
+  const auto& root =
+      planner->tree().edge_state(planner->root_state().edge, planner->root_state().index);
+  int rx = 0;
+  int ry = 0;
+  ASSERT_TRUE(grid.to_cell(root[0], root[1], rx, ry));
+  const std::uint32_t here[] = {grid.index(rx, ry)};
+  field.compute(grid, clearance, here, config.rho_clearance_m);
+  ASSERT_EQ(planner->adopt_goal(GoalCells{here}, field), RetainStatus::kOk);
+  ASSERT_EQ(planner->retain(planner->root_state(), GoalCells{here}, 1.0, nullptr, RhoUpdate::kKeep),
+            RetainStatus::kOk);
+  EXPECT_TRUE(planner->solved());
+
+  // AND a goal without a free cell is refused, leaving F and rho as they were
+  const double rho_before = planner->rho_field().distance_m(5.0, 5.0);
+  grid.set(3, 3, Cell::kObstacle);
+  const std::uint32_t blocked[] = {grid.index(3, 3)};
+  EXPECT_EQ(planner->adopt_goal(GoalCells{blocked}, field), RetainStatus::kGoalWithoutFreeCell);
+  EXPECT_DOUBLE_EQ(planner->rho_field().distance_m(5.0, 5.0), rho_before);
+  ASSERT_EQ(planner->retain(planner->root_state(), GoalCells{here}, 1.0, nullptr, RhoUpdate::kKeep),
+            RetainStatus::kOk);
+  EXPECT_TRUE(planner->solved());
 }
 
 TEST_F(RetainmentTest, ThousandsOfCyclesLeakNothing) {
