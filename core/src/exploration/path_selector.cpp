@@ -119,6 +119,9 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
   const auto stride = std::max<int>(
       1, static_cast<int>(std::lround(config_.sample_step_s / planner.config().record_step_s())));
 
+  const auto& root_state = tree.edge_state(tree.root(), tree.edge(tree.root()).last);
+  const double root_rho = rho.distance_m(state_x(root_state), state_y(root_state));
+
   // Both candidates are tracked in one pass; which one counts is known only at its end.
   PathChoice by_sight;
   PathChoice by_rho;
@@ -161,7 +164,9 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
       by_sight = PathChoice{TreeState{e, k}, d_all, length, by_sight_weight, true};
     }
     const double by_rho_weight = rho_end * growth;
-    if (by_rho_weight < by_rho.weight) {
+    // Without sight of the target, only a trajectory that ends closer to F than the root is a
+    // candidate (see the file comment of path_selector.hpp: no creeping at a dead end).
+    if (rho_end < root_rho && by_rho_weight < by_rho.weight) {
       by_rho = PathChoice{TreeState{e, k}, rho_end, length, by_rho_weight, false};
     }
   };

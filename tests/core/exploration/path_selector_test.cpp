@@ -192,12 +192,37 @@ TEST_F(PathSelectorTest, WhenNoStateSeesTheFrontierRhoAtTheEndDecides) {
   const PathChoice choice = selector->select(*planner, 10);
   ASSERT_NE(choice.state.edge, kNoHandle);
   EXPECT_FALSE(choice.sees_target);
+  // The least weight among the trajectories that end closer to F than the root.
+  const double root_rho = planner->rho_field().distance_m(1.0, 1.0);
   double best = std::numeric_limits<double>::infinity();
   for_each_state([&](TreeState s, std::uint32_t step) {
-    if (step >= 10) best = std::min(best, reference(s, false).weight);
+    const Reference r = reference(s, false);
+    if (step >= 10 && r.d_m < root_rho) best = std::min(best, r.weight);
   });
   EXPECT_NEAR(choice.weight, best, 1e-9 * best);
   EXPECT_NEAR(choice.d_m, reference(choice.state, false).d_m, 1e-9);
+  EXPECT_LT(choice.d_m, root_rho);
+}
+
+TEST_F(PathSelectorTest, WhenNoTrajectoryGetsCloserToTheTargetThereIsNoChoice) {
+  // GIVEN a tree none of whose trajectories sees the frontier or ends closer to F than the
+  // root: F is the root's own cell (rho 0 there)
+  ASSERT_EQ(frontiers->update(grid, planner->checker().clearance(), 1.0, 1.0),
+            ExplorationStatus::kTarget);
+  int cx = 0;
+  int cy = 0;
+  ASSERT_TRUE(grid.to_cell(1.0, 1.0, cx, cy));
+  const std::uint32_t here[] = {grid.index(cx, cy)};
+  ASSERT_TRUE(planner->set_problem(robot.rest_state(1.0, 1.0, 0.0), GoalCells{here}));
+  (void)planner->solve([&] { return planner->stats().edges_added >= 4; });
+  selector->set_target(grid, frontiers->target_cells());
+  ASSERT_FALSE(tree_sees_target());
+  std::uint32_t deepest = 0;
+  for_each_state([&](TreeState, std::uint32_t step) { deepest = std::max(deepest, step); });
+  ASSERT_GT(deepest, 10U);
+  // WHEN a trajectory is chosen THEN there is none: creeping along the shortest one would be
+  // the choice otherwise, and the vehicle is to stop and let the tree grow instead
+  EXPECT_EQ(selector->select(*planner, 10).state.edge, kNoHandle);
 }
 
 TEST_F(PathSelectorTest, NoTrajectoryLastingTMeansNoChoice) {
