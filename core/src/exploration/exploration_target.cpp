@@ -31,8 +31,8 @@ Result<ExplorationTarget> ExplorationTarget::create(const OccupancyGrid& like,
   if (!frontiers) return frontiers.error();
   auto rho = DistanceField::create(like.width(), like.height(), like.resolution());
   if (!rho) return rho.error();
-  return ExplorationTarget(config, like, std::move(clearance).value(),
-                           std::move(frontiers).value(), std::move(rho).value());
+  return ExplorationTarget(config, like, std::move(clearance).value(), std::move(frontiers).value(),
+                           std::move(rho).value());
 }
 
 ExplorationTarget::ExplorationTarget(const ExplorationTargetConfig& config, OccupancyGrid map,

@@ -295,7 +295,8 @@ template <VehicleModel V>
 RetainStatus Planner<V>::adopt_goal(GoalCells goal, DistanceField& rho) noexcept {
   GRIP_ASSERT(rho.width() == grid_->width() && rho.height() == grid_->height() &&
               rho.resolution() == grid_->resolution());
-  if (const RetainStatus s = set_goal_cells(GoalSpec{nullptr, goal.cells}); s != RetainStatus::kOk) {
+  if (const RetainStatus s = set_goal_cells(GoalSpec{nullptr, goal.cells});
+      s != RetainStatus::kOk) {
     return s;
   }
   std::swap(rho_field_, rho);
