@@ -119,7 +119,8 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
   const auto stride = std::max<int>(
       1, static_cast<int>(std::lround(config_.sample_step_s / planner.config().record_step_s())));
 
-  const auto& root_state = tree.edge_state(tree.root(), tree.edge(tree.root()).last);
+  const TreeState root = planner.root_state();
+  const auto& root_state = tree.edge_state(root.edge, root.index);
   const double root_rho = rho.distance_m(state_x(root_state), state_y(root_state));
 
   // Both candidates are tracked in one pass; which one counts is known only at its end.

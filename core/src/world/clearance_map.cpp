@@ -153,6 +153,11 @@ CellBox ClearanceMap::update(const OccupancyGrid& grid, const CellBox& changed,
   const std::span<const Cell> cells = grid.cells();
   const auto w = static_cast<std::size_t>(width_);
   const int source_w = source.x1 - source.x0 + 1;
+  // Pass 1's result for cell (x, y) of W's rows and S's columns.
+  const auto column_distance = [&](int x, int y) -> std::uint32_t& {
+    return columns_[static_cast<std::size_t>(y - window.y0) * static_cast<std::size_t>(source_w) +
+                    static_cast<std::size_t>(x - source.x0)];
+  };
 
   // Pass 1, per column of S: distance to the nearest non-free cell of the column within S (or
   // the grid's outside rows where S reaches them), kept for the rows of W.
@@ -163,9 +168,7 @@ CellBox ClearanceMap::update(const OccupancyGrid& grid, const CellBox& changed,
         last = y;
       }
       if (y >= window.y0 && y <= window.y1) {
-        columns_[static_cast<std::size_t>(y - window.y0) * static_cast<std::size_t>(source_w) +
-                 static_cast<std::size_t>(x - source.x0)] =
-            static_cast<std::uint32_t>(std::min<std::int64_t>(y - last, kFar));
+        column_distance(x, y) = static_cast<std::uint32_t>(std::min<std::int64_t>(y - last, kFar));
       }
     }
     last = source.y1 == height_ - 1 ? height_ : source.y1 + kFar;
@@ -174,9 +177,7 @@ CellBox ClearanceMap::update(const OccupancyGrid& grid, const CellBox& changed,
         last = y;
       }
       if (y >= window.y0 && y <= window.y1) {
-        std::uint32_t& g =
-            columns_[static_cast<std::size_t>(y - window.y0) * static_cast<std::size_t>(source_w) +
-                     static_cast<std::size_t>(x - source.x0)];
+        std::uint32_t& g = column_distance(x, y);
         g = std::min(g, static_cast<std::uint32_t>(std::min<std::int64_t>(last - y, kFar)));
       }
     }
@@ -189,11 +190,9 @@ CellBox ClearanceMap::update(const OccupancyGrid& grid, const CellBox& changed,
   const int first = left_border ? 1 : 0;  // f index of column source.x0
   const int n = source_w + (left_border ? 1 : 0) + (right_border ? 1 : 0);
   for (int y = window.y0; y <= window.y1; ++y) {
-    const std::uint32_t* g = columns_.data() + static_cast<std::size_t>(y - window.y0) *
-                                                   static_cast<std::size_t>(source_w);
     if (left_border) f_[0] = 0;
     for (int i = 0; i < source_w; ++i) {
-      const auto gi = static_cast<std::int64_t>(g[i]);
+      const auto gi = static_cast<std::int64_t>(column_distance(source.x0 + i, y));
       f_[static_cast<std::size_t>(first + i)] = gi * gi;
     }
     if (right_border) f_[static_cast<std::size_t>(n - 1)] = 0;

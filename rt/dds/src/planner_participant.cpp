@@ -201,7 +201,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   void check_liveliness();
 
   // Planning thread (and run() during start-up, before the planning thread exists).
-  bool apply_tiles(MapChanges& changes) noexcept;
+  void apply_tiles(MapChanges& changes) noexcept;
   CycleOutcome cycle_body(std::int64_t release_ns, std::int64_t deadline_ns) noexcept;
   void chain_plan_start(std::int64_t release_ns) noexcept;
   CycleOutcome plan_cycle(std::int64_t started_ns, const MapChanges& changes,
@@ -587,8 +587,8 @@ void PlannerParticipantFor<V>::check_liveliness() {
 // ---- Planning thread ----
 
 template <VehicleModel V>
-bool PlannerParticipantFor<V>::apply_tiles(MapChanges& changes) noexcept {
-  bool applied = false;
+void PlannerParticipantFor<V>::apply_tiles(MapChanges& changes) noexcept {
+  bool applied = false;  // by this call (changes.applied may come from an earlier one)
   bool batch_complete = false;
   OccupancyGrid& grid = *grid_;
   while (tiles_->try_pop(*tile_)) {
@@ -616,7 +616,6 @@ bool PlannerParticipantFor<V>::apply_tiles(MapChanges& changes) noexcept {
   }
   // The checksum describes a whole hand-over, not a map half way through one.
   if (applied && batch_complete) map_checksum_ = map_checksum(grid);
-  return applied;
 }
 
 // Real time: one cycle per period of the PeriodicLoop, growth until the deadline.
