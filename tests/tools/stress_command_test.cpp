@@ -29,8 +29,11 @@ bool sanitized() {
 
 TEST(StressCommand, AShortRunWritesASaneReportWithoutAllocationsOnThePlanningThread) {
   const std::string report_path = ::testing::TempDir() + "grip-stress-report.json";
-  const CommandRun r =
-      run("stress --duration 2 --period-ms 50 --budget-ms 25 --report " + report_path);
+  // A sanitized planner runs several times slower (a whole-map pass takes tens of ms), so it
+  // gets a proportionate period: the same 40 cycles, each with time to grow the tree.
+  const std::string timing = sanitized() ? "--duration 8 --period-ms 200 --budget-ms 100"
+                                         : "--duration 2 --period-ms 50 --budget-ms 25";
+  const CommandRun r = run("stress " + timing + " --report " + report_path);
   ASSERT_EQ(r.status, 0) << r.output;
   std::ifstream in(report_path);
   ASSERT_TRUE(in.good()) << r.output;

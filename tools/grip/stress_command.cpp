@@ -214,7 +214,10 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
           if (grid.in_bounds(x, y)) grid.set(x, y, patch.value);
         }
       }
-      if (patch.value != Cell::kFree) blocked.add(CellBox{patch.x0, patch.y0, patch.x1, patch.y1});
+      const CellBox box{patch.x0, patch.y0, patch.x1, patch.y1};
+      // The clearance is refreshed near the patches only, as on a vehicle.
+      cycle->note_changed(box);
+      if (patch.value != Cell::kFree) blocked.add(box);
     }
     cycle->note_newly_blocked(blocked);
     GoalRegion goal{};
