@@ -37,9 +37,9 @@ nlohmann::json read_json(const std::string& path) {
 }
 
 void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
-  for (const char* key :
-       {"result", "coverage", "collisions", "cycles", "deadline_misses", "sim_time_s", "distance_m",
-        "mean_speed_fraction", "plans_received", "contingency_stops", "speed_profile"}) {
+  for (const char* key : {"result", "coverage", "collisions", "cycles", "deadline_misses",
+                          "sim_time_s", "distance_m", "mean_speed_fraction", "plans_received",
+                          "contingency_stops", "speed_profile", "retraced_fraction"}) {
     ASSERT_TRUE(r.contains(key)) << key << "\n" << output;
   }
   const std::string result = r.at("result");
@@ -49,6 +49,8 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
   EXPECT_GT(r.at("distance_m").get<double>(), 1.0) << "the vehicle never followed a plan";
   EXPECT_GT(r.at("coverage").get<double>(), 0.2);
   EXPECT_LE(r.at("coverage").get<double>(), 1.0);
+  EXPECT_GE(r.at("retraced_fraction").get<double>(), 0.0);
+  EXPECT_LT(r.at("retraced_fraction").get<double>(), 1.0);
   EXPECT_GT(r.at("speed_profile").size(), 100U);
   // How much of the time the vehicle went faster than 50% and 80% of its maximum, per sample.
   const double max_speed = r.at("max_speed_m_s").get<double>();

@@ -107,6 +107,7 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
   j["sim_time_s"] = r.sim_time_s;
   j["wall_time_s"] = r.wall_time_s;
   j["distance_m"] = r.distance_m;
+  j["retraced_fraction"] = r.retraced_fraction;
   j["mean_speed_fraction"] = r.mean_speed_fraction;
   j["plans_received"] = r.plans_received;
   j["plans_rejected"] = r.plans_rejected;
@@ -197,7 +198,8 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
             << " after " << std::fixed << std::setprecision(1) << r.sim_time_s << " s simulated ("
             << r.wall_time_s << " s wall)\n  coverage " << std::setprecision(3) << r.coverage
             << ", collisions " << r.collisions << ", distance " << std::setprecision(1)
-            << r.distance_m << " m, mean speed " << std::setprecision(2) << r.mean_speed_fraction
+            << r.distance_m << " m (" << std::setprecision(2) << r.retraced_fraction
+            << " of it retraced), mean speed " << std::setprecision(2) << r.mean_speed_fraction
             << " of top\n  planner cycles " << r.cycles << ", deadline misses " << r.deadline_misses
             << ", plans " << r.plans_received << " (rejected " << r.plans_rejected << ", "
             << r.brake_plans << " to brake, " << r.start_mismatches

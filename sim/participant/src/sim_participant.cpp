@@ -13,6 +13,7 @@
 #include "grip/sim/coverage.hpp"
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/range_sensor.hpp"
+#include "grip/sim/retraced_distance.hpp"
 #include "grip/vehicles/default_vehicle.hpp"
 
 namespace grip::sim {
@@ -271,6 +272,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   report.deadline_misses = status ? status->misses : 0;
   report.sim_time_s = t_sim();
   report.distance_m = stats.distance_m;
+  report.retraced_fraction = retraced_distance(report.trajectory, radius / 4.0, radius).fraction();
   report.mean_speed_fraction = executor->mean_speed_fraction();
   report.contingency_stops = stats.contingencies;
   report.start_mismatches = stats.start_mismatches;

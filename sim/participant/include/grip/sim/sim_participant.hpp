@@ -80,6 +80,9 @@ struct SimRunReport {
   std::uint64_t deadline_misses = 0;  // the planner's, from its status
   double sim_time_s = 0.0;
   double distance_m = 0.0;
+  // Of distance_m, the fraction driven again over ground driven before (retraced_distance(),
+  // squares of a quarter of the sensor radius, entered again at least a sensor radius later).
+  double retraced_fraction = 0.0;
   double mean_speed_fraction = 0.0;
   std::uint64_t plans_received = 0;
   std::uint64_t plans_rejected = 0;
