@@ -4,7 +4,9 @@
 #include <sys/eventfd.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <ctime>
 
 #include "grip/platform/os_call.hpp"
 
@@ -28,8 +30,11 @@ void Wakeup::signal() noexcept {
 
 bool Wakeup::wait(std::chrono::nanoseconds timeout) noexcept {
   pollfd p{fd_, POLLIN, 0};
-  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
-  if (::poll(&p, 1, static_cast<int>(ms)) <= 0) return false;  // timeout or EINTR
+  // ppoll, not poll: a timeout to the nanosecond (a waiter due shortly before an event must not
+  // sleep a millisecond past it).
+  const std::int64_t ns = std::max<std::int64_t>(timeout.count(), 0);
+  const timespec ts{static_cast<time_t>(ns / 1'000'000'000), static_cast<long>(ns % 1'000'000'000)};
+  if (::ppoll(&p, 1, &ts, nullptr) <= 0) return false;  // timeout or EINTR
   std::uint64_t count = 0;
   return ::read(fd_, &count, sizeof count) == static_cast<ssize_t>(sizeof count);
 }

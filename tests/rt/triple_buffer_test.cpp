@@ -58,6 +58,18 @@ TEST_F(TripleBufferTest, ReaderSeesNothingBeforeTheFirstPublish) {
   EXPECT_EQ(buffer_.published(), 0U);
 }
 
+TEST_F(TripleBufferTest, FreshSaysWhetherUpdateWouldTakeASnapshotWithoutTakingIt) {
+  EXPECT_FALSE(buffer_.fresh());
+  buffer_.write(Snapshot::filled(1));
+  // Looking does not take: still fresh, and update() then takes it.
+  EXPECT_TRUE(buffer_.fresh());
+  EXPECT_TRUE(buffer_.fresh());
+  ASSERT_TRUE(buffer_.update());
+  EXPECT_EQ(buffer_.read_buffer().fields[0], 1U);
+  EXPECT_FALSE(buffer_.fresh());
+  EXPECT_FALSE(buffer_.update());
+}
+
 TEST_F(TripleBufferTest, ReaderTakesTheLatestOfSeveralPublishes) {
   // GIVEN three snapshots published before the reader looks
   buffer_.write(Snapshot::filled(1));

@@ -188,6 +188,8 @@ int run_planner(const PlannerOptions& o) {
     j["page_faults_in_loop"] = r.usage_in_loop.minor_faults + r.usage_in_loop.major_faults;
     j["wake_latency_us"] = percentiles_us(r.wake_latency);
     j["compute_us"] = percentiles_us(r.compute);
+    j["plan_handoff_us"] = percentiles_us(r.plan_handoff);
+    j["plan_write_us"] = percentiles_us(r.plan_write);
     std::ofstream out(o.report);
     out << j.dump(2) << "\n";
     if (!out) {

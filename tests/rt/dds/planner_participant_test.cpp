@@ -138,6 +138,12 @@ TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
   }
   EXPECT_GE(report.plans_published, cycles.size());
   EXPECT_EQ(report.write_failures, 0U);
+  // Every written plan's way out was timed (the report may be taken while the publish thread
+  // writes the last plan: one either way).
+  EXPECT_NEAR(static_cast<double>(report.plan_handoff.count()),
+              static_cast<double>(report.plans_published), 1.0);
+  EXPECT_EQ(report.plan_write.count(), report.plan_handoff.count());
+  EXPECT_GT(report.plan_write.min(), 0) << "a write takes time";
 
   EXPECT_GT(dropped, 5U);
   EXPECT_GE(report.map_gaps, 1U);

@@ -21,6 +21,16 @@
 
 namespace grip::platform {
 
+// A hint to the CPU inside a loop that polls for another thread's write: it eases the
+// hyperthread sibling and the memory bus, and the loop notices the write as soon as it lands.
+inline void cpu_relax() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__) || defined(__arm__)
+  asm volatile("yield");
+#endif
+}
+
 // Names the calling thread (pthread_setname_np): what top -H, ps -L, gdb and
 // /proc/<pid>/task/<tid>/comm show. 1 to 15 characters (the kernel's TASK_COMM_LEN is 16 with
 // the terminating NUL); a longer or empty name is refused with kInvalidArgument, not truncated.

@@ -12,11 +12,12 @@
 //   tb.publish();                    // ... and hand it over; or tb.write(value) to copy.
 // Reader side (one thread):
 //   if (tb.update()) { use(tb.read_buffer()); }   // zero copy; or tb.read(out) to copy.
+//   tb.fresh();                      // would update() take one? (to poll for it)
 //
 // Threading contract (not checked): the writer-side calls (write_buffer, publish, write,
 // published) come from one thread at a time, the reader-side calls (update, read_buffer, read,
-// read_sequence, skipped) from one thread at a time. A reference from write_buffer() is valid
-// until the next publish(); one from read_buffer() until the next update() or read().
+// read_sequence, skipped, fresh) from one thread at a time. A reference from write_buffer() is
+// valid until the next publish(); one from read_buffer() until the next update() or read().
 //
 // How: at any moment the writer owns one slot, the reader owns one slot and the third is the
 // "middle". The state word holds the middle's index and a fresh bit. publish() swaps the
@@ -88,13 +89,17 @@ class TripleBuffer {
   // Takes the newest published snapshot as the read buffer if one arrived since the last take.
   // Returns true iff it did; otherwise the read buffer is unchanged.
   bool update() noexcept {
-    if ((state_.load(std::memory_order_relaxed) & kFreshBit) == 0) {
-      return false;  // only the reader clears the bit, so a fresh one cannot vanish meanwhile
-    }
+    if (!fresh()) return false;  // only the reader clears the bit: a fresh one cannot vanish
     const std::uint32_t previous = state_.exchange(read_index_, std::memory_order_acq_rel);
     read_index_ = previous & kIndexMask;
     ++taken_;
     return true;
+  }
+
+  // Whether update() would take a snapshot: one was published since the last take. Cheap
+  // enough to poll (one relaxed load); a fresh snapshot stays fresh until the reader takes it.
+  [[nodiscard]] bool fresh() const noexcept {
+    return (state_.load(std::memory_order_relaxed) & kFreshBit) != 0;
   }
 
   // The snapshot taken by the last successful update(); T{} before the first one.

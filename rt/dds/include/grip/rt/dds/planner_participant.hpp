@@ -12,6 +12,8 @@
 //   publish thread (ordinary): writes plans and status. A reliable writer that blocks in
 //     dds_write (up to max_blocking_time) delays only this thread; the planning thread meanwhile
 //     replaces the pending plan by a newer one, and the replaced one is counted as superseded.
+//     Woken when the plan's end is chosen, it is running by the time the plan is handed over,
+//     so that a plan's write does not wait for a thread's wake-up.
 //   target thread (ordinary; exploring in real time): chooses the frontier target
 //     (ExplorationTarget: clearance, the frontier wavefront, grouping), whole-map passes of
 //     milliseconds, on a copy of the map the planning thread hands over with the robot's
@@ -115,6 +117,10 @@ struct PlannerParticipantReport {
   platform::ThreadUsage usage_in_loop{};
   LatencyHistogram wake_latency;
   LatencyHistogram compute;
+  // Each published plan's way out, on the publish thread: from its commit on the planning
+  // thread to the start of its write (the hand-off), and the write (dds_write) itself.
+  LatencyHistogram plan_handoff;
+  LatencyHistogram plan_write;
 };
 
 // The planner's last tree and committed plan in the plane, for pictures.
