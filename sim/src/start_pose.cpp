@@ -1,10 +1,12 @@
 #include "grip/sim/start_pose.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -103,7 +105,8 @@ Result<StartPose> parse_start(std::string_view text) {
   return pose;
 }
 
-Status check_start(const LoadedMap& map, const Footprint& footprint, const StartPose& start) {
+Status check_start(const LoadedMap& map, const Footprint& footprint, double check_margin_m,
+                   const StartPose& start) {
   const OccupancyGrid& grid = map.grid;
   int cx = 0;
   int cy = 0;
@@ -114,25 +117,30 @@ Status check_start(const LoadedMap& map, const Footprint& footprint, const Start
                             number_text(grid.origin_y()) + ", " +
                             number_text(grid.origin_y() + grid.height_m()) + "] m");
   }
-  auto checker = CollisionChecker::create(grid, footprint, 0.0);
+  auto checker = CollisionChecker::create(grid, footprint, check_margin_m);
   if (!checker) return checker.error();
   if (checker->is_free(start.x_m, start.y_m, start.theta_rad)) return Ok{};
-  // Name the first obstacle cell the chassis touches, scanning its bounding box.
+  const Footprint grown = checker->checked_footprint();
+  const std::string what = check_margin_m > 0.0
+                               ? "the chassis, with the planner's collision margin of " +
+                                     number_text(check_margin_m) + " m,"
+                               : std::string("the chassis");
+  // Name the first obstacle cell the grown chassis touches, scanning its bounding box.
   const int reach =
-      static_cast<int>(std::ceil(footprint.circumscribed_radius() / grid.resolution())) + 1;
+      static_cast<int>(std::ceil(grown.circumscribed_radius() / grid.resolution())) + 1;
   for (int y = cy - reach; y <= cy + reach; ++y) {
     for (int x = cx - reach; x <= cx + reach; ++x) {
       if (!grid.in_bounds(x, y) || grid.at(x, y) == Cell::kFree) continue;
-      if (!chassis_touches_cell(grid, footprint, start, x, y)) continue;
+      if (!chassis_touches_cell(grid, grown, start, x, y)) continue;
       return invalid_argument(
-          map.path + ": start " + pose_text(start) + " puts the chassis on the obstacle cell (" +
+          map.path + ": start " + pose_text(start) + " puts " + what + " on the obstacle cell (" +
           std::to_string(x) + ", " + std::to_string(y) + ") centred at (" +
           number_text(grid.cell_center_x(x)) + ", " + number_text(grid.cell_center_y(y)) +
           ") m, from " + map.describe_cell(x, y));
     }
   }
-  return invalid_argument(map.path + ": start " + pose_text(start) +
-                          " puts the chassis across the edge of the map");
+  return invalid_argument(map.path + ": start " + pose_text(start) + " puts " + what +
+                          " across the edge of the map");
 }
 
 namespace {
@@ -189,26 +197,53 @@ std::uint32_t best_start_cell(const OccupancyGrid& grid, const ClearanceMap& cle
 
 }  // namespace
 
-Result<StartPose> choose_start(const LoadedMap& map, const Footprint& footprint, double margin_m) {
-  if (!std::isfinite(margin_m) || margin_m < 0.0) {
-    return invalid_argument("start margin_m must be a finite number >= 0 (got " +
-                            number_text(margin_m) + ")");
+Result<StartPose> choose_start(const LoadedMap& map, const Footprint& footprint,
+                               double check_margin_m, double roam_margin_m) {
+  for (const double m : {check_margin_m, roam_margin_m}) {
+    if (!std::isfinite(m) || m < 0.0) {
+      return invalid_argument("start margins must be finite numbers >= 0 (got " + number_text(m) +
+                              ")");
+    }
   }
   const OccupancyGrid& grid = map.grid;
   auto clearance = ClearanceMap::create_for(grid);
   if (!clearance) return clearance.error();
   // Small arenas (a TurtleBot sandbox) may not hold the full margin: halve it, then drop it.
-  for (const double margin : {margin_m, 0.5 * margin_m, 0.25 * margin_m, 0.0}) {
-    const std::uint32_t cell =
-        best_start_cell(grid, *clearance, footprint.circumscribed_radius() + margin);
+  const double needed = footprint.circumscribed_radius() + check_margin_m;
+  for (const double roam : {roam_margin_m, 0.5 * roam_margin_m, 0.25 * roam_margin_m, 0.0}) {
+    const std::uint32_t cell = best_start_cell(grid, *clearance, needed + roam);
     if (cell != kNone) {
       return StartPose{grid.cell_center_x(grid.cell_x(cell)), grid.cell_center_y(grid.cell_y(cell)),
                        0.0};
     }
   }
-  return invalid_argument(map.path + ": no place on the map where the chassis fits in every " +
-                          "heading: that needs " + number_text(footprint.circumscribed_radius()) +
-                          " m (its circumscribed radius) from every obstacle and the map's edge");
+  // Nowhere does the chassis fit in every heading (a long car in a small arena): the most open
+  // cell where it fits in some heading, tried every pi/8. Cells by clearance, largest first
+  // (ties: the lower index); a cell nearer an obstacle than the chassis reaches in its
+  // narrowest direction cannot hold it in any heading.
+  auto checker = CollisionChecker::create(grid, footprint, check_margin_m);
+  if (!checker) return checker.error();
+  const Footprint grown = checker->checked_footprint();
+  const double narrowest = std::min({grown.front_m, grown.rear_m, grown.half_width_m});
+  std::vector<std::uint32_t> open;
+  for (std::uint32_t c = 0; c < grid.cell_count(); ++c) {
+    if (clearance->clearance_m(c) >= narrowest) open.push_back(c);
+  }
+  std::stable_sort(open.begin(), open.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return clearance->clearance_m(a) > clearance->clearance_m(b);
+  });
+  constexpr int kHeadings = 16;
+  for (const std::uint32_t c : open) {
+    const double x = grid.cell_center_x(grid.cell_x(c));
+    const double y = grid.cell_center_y(grid.cell_y(c));
+    for (int k = 0; k < kHeadings; ++k) {
+      const double theta = 2.0 * std::numbers::pi * k / kHeadings;
+      if (checker->is_free(x, y, theta)) return StartPose{x, y, theta};
+    }
+  }
+  return invalid_argument(map.path + ": no place on the map where the chassis, with the " +
+                          "planner's collision margin of " + number_text(check_margin_m) +
+                          " m, fits in any heading");
 }
 
 }  // namespace grip::sim

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "grip/planner/step_margin.hpp"
 #include "grip/sim/range_sensor.hpp"
 #include "grip/vehicles/car.hpp"
 #include "grip/world/collision_checker.hpp"
@@ -29,6 +30,7 @@ LoadedMap movingai(const std::string& rows, int height, int width, const std::st
 }
 
 const Footprint kDd{0.25, 0.25, 0.2};
+const Footprint kCar{0.6, 0.15, 0.2};
 
 TEST(ParseStartTest, AcceptsXYAndXYTheta) {
   auto xy = parse_start("1.5,2");
@@ -53,7 +55,7 @@ TEST(ParseStartTest, RejectsMalformedTextQuotingIt) {
 TEST(CheckStartTest, AStartInsideAnObstacleNamesTheCellAndItsFileLine) {
   // 4 x 4 map cells of 1 m; the obstacle '@' sits in the file's row 2 (line 6), column 3.
   const LoadedMap map = movingai("....\n..@.\n....\n....\n", 4, 4, "room.map");
-  const auto s = check_start(map, kDd, StartPose{2.5, 2.5, 0.0});
+  const auto s = check_start(map, kDd, 0.0, StartPose{2.5, 2.5, 0.0});
   ASSERT_FALSE(s.ok());
   const std::string& m = s.error().message;
   EXPECT_TRUE(contains(m, "room.map: start (2.5, 2.5, 0)")) << m;
@@ -64,18 +66,29 @@ TEST(CheckStartTest, AStartInsideAnObstacleNamesTheCellAndItsFileLine) {
 TEST(CheckStartTest, AChassisOverlappingAnObstacleFromAFreeCellIsRefusedToo) {
   const LoadedMap map = movingai("....\n..@.\n....\n....\n", 4, 4, "room.map");
   // Centre in the free cell left of the obstacle, front 0.25 m ahead reaching x = 2.05.
-  const auto s = check_start(map, kDd, StartPose{1.8, 2.5, 0.0});
+  const auto s = check_start(map, kDd, 0.0, StartPose{1.8, 2.5, 0.0});
   ASSERT_FALSE(s.ok());
   EXPECT_TRUE(contains(s.error().message, "room.map:6:3")) << s.error().message;
-  EXPECT_TRUE(check_start(map, kDd, StartPose{1.6, 2.5, 0.0}).ok());
+  EXPECT_TRUE(check_start(map, kDd, 0.0, StartPose{1.6, 2.5, 0.0}).ok());
+}
+
+TEST(CheckStartTest, TheChassisGrownByThePlannersMarginMustBeFreeToo) {
+  const LoadedMap map = movingai("....\n..@.\n....\n....\n", 4, 4, "room.map");
+  // The front at x = 1.85, 0.15 m short of the obstacle at x = 2: free with a margin of 0.1 m,
+  // not with 0.2 m (the planner would refuse that start).
+  EXPECT_TRUE(check_start(map, kDd, 0.1, StartPose{1.6, 2.5, 0.0}).ok());
+  const auto s = check_start(map, kDd, 0.2, StartPose{1.6, 2.5, 0.0});
+  ASSERT_FALSE(s.ok());
+  EXPECT_TRUE(contains(s.error().message, "collision margin of 0.2 m")) << s.error().message;
+  EXPECT_TRUE(contains(s.error().message, "room.map:6:3")) << s.error().message;
 }
 
 TEST(CheckStartTest, AStartOutsideOrAcrossTheEdgeIsRefused) {
   const LoadedMap map = movingai("....\n....\n", 2, 4, "open.map");
-  const auto outside = check_start(map, kDd, StartPose{5.0, 1.0, 0.0});
+  const auto outside = check_start(map, kDd, 0.0, StartPose{5.0, 1.0, 0.0});
   ASSERT_FALSE(outside.ok());
   EXPECT_TRUE(contains(outside.error().message, "outside the map")) << outside.error().message;
-  const auto edge = check_start(map, kDd, StartPose{0.1, 1.0, 0.0});
+  const auto edge = check_start(map, kDd, 0.0, StartPose{0.1, 1.0, 0.0});
   ASSERT_FALSE(edge.ok());
   EXPECT_TRUE(contains(edge.error().message, "edge of the map")) << edge.error().message;
 }
@@ -90,14 +103,14 @@ TEST(ChooseStartTest, ItPicksTheLargestRegionNearestTheBottomLeft) {
       "............\n"
       "............\n",
       6, 12, "halls.map");
-  auto start = choose_start(map, kDd, 0.3);
+  auto start = choose_start(map, kDd, 0.0, 0.3);
   ASSERT_TRUE(start.ok()) << start.error().message;
   // Candidates need 0.32 + 0.3 m of clearance: in the lower hall, the cell nearest (0, 0) is the
   // one at 0.65 m from the map's left and bottom edges (its centre at 0.65: clearance 0.65
   // - 0.07 m half diagonal > 0.62).
   EXPECT_NEAR(start->x_m, 0.65, 1e-9);
   EXPECT_NEAR(start->y_m, 0.65, 1e-9);
-  EXPECT_TRUE(check_start(map, kDd, *start).ok());
+  EXPECT_TRUE(check_start(map, kDd, 0.0, *start).ok());
   // Block the lower hall's left part: the top-left pocket (3 x 3 m) is now smaller than the
   // hall on the right, which wins although the pocket is nearer the corner. Its cell nearest
   // the corner is in the notch at the hall's left: 0.65 m from the walls left and below.
@@ -109,24 +122,48 @@ TEST(ChooseStartTest, ItPicksTheLargestRegionNearestTheBottomLeft) {
       "@@@@@.......\n"
       "@@@@@.......\n",
       6, 12, "walled.map");
-  auto right = choose_start(walled, kDd, 0.3);
+  auto right = choose_start(walled, kDd, 0.0, 0.3);
   ASSERT_TRUE(right.ok());
   EXPECT_NEAR(right->x_m, 4.65, 1e-9);
   EXPECT_NEAR(right->y_m, 2.65, 1e-9);
 }
 
-TEST(ChooseStartTest, ASmallArenaGivesUpTheMarginBeforeGivingUp) {
+TEST(ChooseStartTest, ASmallArenaGivesUpTheRoomToSpareThenEveryHeadingButNeverTheMargin) {
   // 1 m x 1 m: the centre cells are 0.45 m (less a 0.07 m half diagonal) from the edge. The
-  // dd robot (0.32 m radius) fits only once the margin is down to 0.075 m; the car never does.
+  // dd robot (0.32 m radius) fits in every heading once the room to spare is down to 0.075 m.
   const LoadedMap map = movingai(".\n", 1, 1, "tiny.map");
-  auto start = choose_start(map, kDd, 0.3);
+  auto start = choose_start(map, kDd, 0.0, 0.3);
   ASSERT_TRUE(start.ok()) << start.error().message;
   EXPECT_NEAR(start->x_m, 0.45, 1e-9);
   EXPECT_NEAR(start->y_m, 0.45, 1e-9);
-  auto car = choose_start(map, Footprint{0.6, 0.15, 0.2}, 0.3);
-  ASSERT_FALSE(car.ok());
-  EXPECT_TRUE(contains(car.error().message, "tiny.map: no place")) << car.error().message;
+  // So it does with a planner's margin of 0.075 m and no room to spare.
+  auto with_margin = choose_start(map, kDd, 0.075, 0.3);
+  ASSERT_TRUE(with_margin.ok()) << with_margin.error().message;
+  EXPECT_NEAR(with_margin->x_m, 0.45, 1e-9);
+  // The car (0.63 m radius) fits in no heading everywhere, but in some heading somewhere: its
+  // chassis, 0.75 m x 0.4 m, and with a margin of 0.05 m 0.85 m x 0.5 m, lies within the
+  // square.
+  for (const double margin : {0.0, 0.05}) {
+    auto car = choose_start(map, kCar, margin, 0.3);
+    ASSERT_TRUE(car.ok()) << car.error().message;
+    EXPECT_TRUE(check_start(map, kCar, margin, *car).ok()) << margin;
+  }
+  // With 0.2 m (1.15 m x 0.8 m) it fits nowhere: the margin is never given up.
+  auto none = choose_start(map, kCar, 0.2, 0.3);
+  ASSERT_FALSE(none.ok());
+  EXPECT_TRUE(contains(none.error().message, "tiny.map: no place")) << none.error().message;
+  EXPECT_TRUE(contains(none.error().message, "collision margin of 0.2 m")) << none.error().message;
   EXPECT_FALSE(choose_start(map, kDd, -1.0).ok());
+  EXPECT_FALSE(choose_start(map, kDd, 0.0, -1.0).ok());
+}
+
+TEST(ChooseStartTest, InACorridorTheCarStartsAlongIt) {
+  // 8 m x 1 m: too narrow for the car in every heading (1.26 m across), wide enough along it.
+  const LoadedMap map = movingai("........\n", 1, 8, "corridor.map");
+  auto start = choose_start(map, kCar, 0.1);
+  ASSERT_TRUE(start.ok()) << start.error().message;
+  EXPECT_TRUE(check_start(map, kCar, 0.1, *start).ok());
+  EXPECT_NEAR(std::sin(start->theta_rad), 0.0, 1e-9) << "across the corridor";
 }
 
 // ---- The real maps in ../shared/maps: nobody here drew them. ----------------------------------
@@ -160,9 +197,11 @@ TEST(SharedMapsTest, EveryMapLoadsAndHasAStartForTheLargestVehicle) {
     }
     EXPECT_GT(free, 0U);
     EXPECT_LT(free, g.cell_count());
-    auto start = choose_start(*map, car.footprint());
+    // The margin the planner checks the start with (its 50 ms integration step).
+    const double margin = step_collision_margin_m(car, 0.05);
+    auto start = choose_start(*map, car.footprint(), margin);
     ASSERT_TRUE(start.ok()) << start.error().message;
-    EXPECT_TRUE(check_start(*map, car.footprint(), *start).ok());
+    EXPECT_TRUE(check_start(*map, car.footprint(), margin, *start).ok());
     // The first sweep from the start reveals free space all around the chassis.
     auto known = OccupancyGrid::create(g.width(), g.height(), g.resolution(), g.origin_x(),
                                        g.origin_y(), Cell::kUnknown);
@@ -170,7 +209,7 @@ TEST(SharedMapsTest, EveryMapLoadsAndHasAStartForTheLargestVehicle) {
     auto sensor = RangeSensor::create(g, RangeSensor::default_radius_m(g));
     ASSERT_TRUE(sensor.ok());
     (void)sensor->sense(start->x_m, start->y_m, *known);
-    auto checker = CollisionChecker::create(*known, car.footprint(), 0.0);
+    auto checker = CollisionChecker::create(*known, car.footprint(), margin);
     ASSERT_TRUE(checker.ok());
     EXPECT_TRUE(checker->is_free(start->x_m, start->y_m, start->theta_rad));
   }

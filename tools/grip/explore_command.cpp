@@ -21,6 +21,7 @@
 
 #include "commands.hpp"
 #include "cycle_trace.hpp"
+#include "grip/planner/step_margin.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
 #include "grip/scenes/scenes.hpp"
@@ -64,6 +65,11 @@ struct World {
 Result<World> load_world(const ExploreOptions& o, VehicleKind robot) {
   const Footprint footprint =
       with_default_vehicle(robot, [](const auto& v) { return Footprint(v.footprint()); });
+  // The planner checks the start with its collision margin, for its cycle's integration step.
+  const double planner_margin_m = with_default_vehicle(robot, [](const auto& v) {
+    return step_collision_margin_m(
+        v, integration_step_for_cycle(rt::dds::PlannerParticipantConfig{}.cycle_s));
+  });
   if (o.map.empty()) {
     auto scene = make_scene(o.scene);
     if (!scene) return scene.error();
@@ -77,13 +83,15 @@ Result<World> load_world(const ExploreOptions& o, VehicleKind robot) {
   if (!loaded) return loaded.error();
   sim::StartPose start;
   if (o.start.empty()) {
-    auto chosen = sim::choose_start(*loaded, footprint);
+    auto chosen = sim::choose_start(*loaded, footprint, planner_margin_m);
     if (!chosen) return chosen.error();
     start = *chosen;
   } else {
     auto given = sim::parse_start(o.start);
     if (!given) return given.error();
-    if (Status s = sim::check_start(*loaded, footprint, *given); !s) return s.error();
+    if (Status s = sim::check_start(*loaded, footprint, planner_margin_m, *given); !s) {
+      return s.error();
+    }
     start = *given;
   }
   return World{o.map, std::move(loaded->grid), start};

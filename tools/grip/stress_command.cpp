@@ -171,7 +171,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   const double period_s = o.period_ms / 1e3;
   // The planner integrates in whole fractions of the period, at most 50 ms per step.
   PlannerConfig planner_config;
-  planner_config.integration_step_s = period_s / std::ceil(period_s / 0.05 - 1e-9);
+  planner_config.integration_step_s = integration_step_for_cycle(period_s);
   planner_config.seed = o.seed;
   // The pool bounds the tree, and retaining a tree costs time in proportion to its size (it is
   // re-timed, re-checked and re-scored every cycle): 400 edges per millisecond of budget keeps

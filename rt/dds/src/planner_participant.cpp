@@ -1022,7 +1022,7 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
   period_wall_ns_.store(ns_of(config_.cycle_s / time_scale), std::memory_order_relaxed);
   PlannerConfig planner_config;
   // Whole fractions of T, at most 50 ms per integration step (as `grip stress`).
-  planner_config.integration_step_s = config_.cycle_s / std::ceil(config_.cycle_s / 0.05 - 1e-9);
+  planner_config.integration_step_s = integration_step_for_cycle(config_.cycle_s);
   planner_config.seed = config_.seed;
   if (config_.no_safety) planner_config.safety = SafetyCheck::kNone;
   // Lockstep grows a fixed number of edges per cycle; the pools hold a few cycles' growth.

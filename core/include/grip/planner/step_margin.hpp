@@ -10,6 +10,12 @@
 
 namespace grip {
 
+// [s] The planner's integration step for a replanning cycle of cycle_s: a whole fraction of
+// the cycle (plans are chained at cycle boundaries), at most 50 ms.
+inline double integration_step_for_cycle(double cycle_s) noexcept {
+  return cycle_s / std::ceil(cycle_s / 0.05 - 1e-9);
+}
+
 // [m] Half the largest motion of any chassis point during one step of dt_s: the reference
 // point moves at most max_speed * dt, a chassis point at distance `reach` from it at most
 // reach * max_turn_rate * dt more. Growing the chassis by this margin on every side, a check
