@@ -88,13 +88,29 @@ void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles)
                     prepare = column("prepare_us"), retain = column("retain_us"),
                     grow = column("grow_us"), commit = column("commit_us"),
                     compute = column("compute_us"), lateness = column("lateness_us"),
-                    missed = column("missed");
+                    missed = column("missed"), restarted = column("restarted"),
+                    committed = column("committed"), status = column("retain_status");
   std::uint64_t rows = 0;
   while (std::getline(in, line)) {
     std::vector<double> v;
+    std::string status_name;
     std::stringstream fields(line);
-    for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+    for (std::string f; std::getline(fields, f, ',');) {
+      if (v.size() == status) status_name = f;
+      v.push_back(v.size() == status ? 0.0 : std::stod(f));
+    }
     ASSERT_EQ(v.size(), header.size()) << line;
+    // Why the tree could not be kept or started; a committed plan comes from a tree that was.
+    EXPECT_TRUE(status_name == "ok" || status_name == "root-not-in-tree" ||
+                status_name == "root-in-collision" || status_name == "invalid-state" ||
+                status_name == "goal-outside-grid" || status_name == "goal-without-free-cell")
+        << line;
+    if (v[committed] == 1.0) {
+      EXPECT_EQ(status_name, "ok") << line;
+    }
+    if (status_name != "ok") {
+      EXPECT_EQ(v[restarted], 1.0) << line;
+    }
     EXPECT_EQ(v[cycle], static_cast<double>(rows)) << line;
     EXPECT_GE(v[wake], 0.0) << line;
     EXPECT_LE(v[prepare] + v[retain] + v[grow] + v[commit], v[compute] + 1.0) << line;
