@@ -118,23 +118,25 @@ typename ReplanningCycle<V>::State ReplanningCycle<V>::next_plan_start() const n
 template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
                                      std::int64_t deadline_ns) noexcept {
-  return run(now_ns, deadline_ns,
-             [](const Planner<V>& planner) noexcept { return planner.best_state(); });
+  return run(
+      now_ns, deadline_ns, [](const Planner<V>& planner) noexcept { return planner.best_state(); },
+      [] {});
 }
 
 template <VehicleModel V>
-CycleOutcome ReplanningCycle<V>::run(
-    FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
-    FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
+CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
+                                     FunctionRef<TreeState(const Planner<V>&)> choose_target,
+                                     FunctionRef<void()> plan_chosen) noexcept {
   const std::int64_t stop_at = deadline_ns - config_.safety_margin_ns;
   return run_growing(
-      now_ns, [&] { return now_ns() >= stop_at; }, choose_target);
+      now_ns, [&] { return now_ns() >= stop_at; }, choose_target, plan_chosen);
 }
 
 template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run_for_edges(
     FunctionRef<std::int64_t()> now_ns, std::uint64_t edges,
-    FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
+    FunctionRef<TreeState(const Planner<V>&)> choose_target,
+    FunctionRef<void()> plan_chosen) noexcept {
   // Iterations are bounded too: where no selection can add an edge (every random plan from the
   // tree collides at once), the edge count alone would never be reached.
   const PlannerStats& stats = planner_.stats();
@@ -142,13 +144,14 @@ CycleOutcome ReplanningCycle<V>::run_for_edges(
   const std::uint64_t give_up_at = stats.iterations + 20 * edges;
   return run_growing(
       now_ns, [&] { return stats.edges_added >= stop_at || stats.iterations >= give_up_at; },
-      choose_target);
+      choose_target, plan_chosen);
 }
 
 template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run_growing(
     FunctionRef<std::int64_t()> now_ns, FunctionRef<bool()> stop_growing,
-    FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept {
+    FunctionRef<TreeState(const Planner<V>&)> choose_target,
+    FunctionRef<void()> plan_chosen) noexcept {
   CycleOutcome out;
   const std::int64_t cycle_start = now_ns();
   // 1. The new root: T along the committed plan, when the plan covers T (or the root itself,
@@ -208,6 +211,7 @@ CycleOutcome ReplanningCycle<V>::run_growing(
       out.retain_status == RetainStatus::kOk
           ? planner_.committable_state(choose_target(planner_), cycle_steps_)
           : TreeState{};
+  plan_chosen();
   if (candidate.edge != kNoHandle) {
     commit(candidate);
     out.committed = true;

@@ -192,6 +192,26 @@ TEST_F(ReplanningCycleTest, AVehicleRestingWithoutAPlanKeepsGrowingTheSameTree) 
   EXPECT_EQ(cycle->plan_start(), rest);
 }
 
+TEST_F(ReplanningCycleTest, ThePlansEndIsAnnouncedOnceACycleBeforeThePlanIsExtracted) {
+  // The announcement comes after growth and the choice, while the previous cycle's plan is
+  // still the committed one: a publishing thread wakes before the new plan exists.
+  const auto best = [](const Planner<Car>& planner) { return planner.best_state(); };
+  const auto racing = [this] { return clock.now += 1'000; };
+  ASSERT_TRUE(run_cycle().committed);
+  for (int i = 0; i < 5; ++i) {
+    const TreeState before = cycle->committed();
+    const std::size_t steps_before = cycle->plan().size();
+    int announced = 0;
+    const CycleOutcome out = cycle->run_for_edges(racing, 200, best, [&] {
+      ++announced;
+      EXPECT_EQ(cycle->committed().edge, before.edge) << "cycle " << i;
+      EXPECT_EQ(cycle->plan().size(), steps_before) << "cycle " << i;
+    });
+    EXPECT_EQ(announced, 1) << "cycle " << i;
+    EXPECT_EQ(out.retain_status, RetainStatus::kOk);
+  }
+}
+
 TEST_F(ReplanningCycleTest, EachCycleStartsWhereThePreviousPlanLeadsAfterT) {
   int compared = 0;
   for (int i = 0; i < 30; ++i) {

@@ -310,7 +310,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   std::uint64_t lockstep_edges_ = 0;
   StateSample first_state_;                      // the state start-up planned from
   std::atomic<std::int64_t> period_wall_ns_{0};  // set at start-up, read by the publish thread
-  // Set by the planning thread once it has chosen the plan's end, before it extracts the plan:
+  // Set by the planning thread once the plan's end is settled, before it extracts the plan:
   // the publish thread wakes meanwhile and is running when the plan is handed over.
   std::atomic<bool> plan_coming_{false};
   std::uint64_t state_sequence_ = 0;
@@ -691,16 +691,17 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, const MapC
   if (exploring_) update_frontier_target(changes.applied);
   const auto now = [] { return platform::now_ns(); };
   const auto choose = [this](const Planner<V>& planner) {
-    const TreeState chosen = !exploring_ ? planner.best_state()
-                             : explored_ ? planner.root_state()
-                                         : selector_->select(planner, cycle_->cycle_steps()).state;
+    if (!exploring_) return planner.best_state();
+    return explored_ ? planner.root_state()
+                     : selector_->select(planner, cycle_->cycle_steps()).state;
+  };
+  const auto announce_plan = [this] {
     plan_coming_.store(true, std::memory_order_release);
     wakeup_.signal();
-    return chosen;
   };
   const std::int64_t prepared = platform::now_ns();
-  CycleOutcome out = lockstep_ ? cycle_->run_for_edges(now, lockstep_edges_, choose)
-                               : cycle_->run(now, deadline_ns, choose);
+  CycleOutcome out = lockstep_ ? cycle_->run_for_edges(now, lockstep_edges_, choose, announce_plan)
+                               : cycle_->run(now, deadline_ns, choose, announce_plan);
   out.prepare_ns = prepared - start;
   ++cycles_;
   const std::int64_t end = platform::now_ns();
@@ -873,7 +874,7 @@ void PlannerParticipantFor<V>::publish_main() {
   const auto applied = platform::apply_scheduling(request);
   publish_policy_ = applied.ok() ? "fifo" : "other (" + applied.error().message + ")";
   publish_policy_set_.store(true, std::memory_order_release);
-  // A plan is announced (plan_coming_) once its end is chosen, before it is extracted and handed
+  // A plan is announced (plan_coming_) once its end is settled, before it is extracted and handed
   // over: the thread's wake-up latency (40-65 us median here, far more in the VM's tail) then
   // overlaps that work instead of adding to the plan's delivery, and the thread, running, watches
   // the hand-off for the plan, at most kPlanComingWatchNs (the extraction takes tens of us).

@@ -105,15 +105,21 @@ class ReplanningCycle {
   CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns) noexcept;
   // The same, with the state the plan should lead to chosen by `choose_target` instead of the
   // planner's best_state() (exploration: PathSelector::select); it is then cut back to the
-  // latest state that can brake safely, at least T from the root, as usual.
-  CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
-                   FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
+  // latest state that can brake safely, at least T from the root, as usual. `plan_chosen` is
+  // called once the plan's end is settled (after that cut), before the plan is extracted: a
+  // thread that publishes the plan can wake meanwhile.
+  CycleOutcome run(
+      FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
+      FunctionRef<TreeState(const Planner<V>&)> choose_target,
+      FunctionRef<void()> plan_chosen = [] {}) noexcept;
   // Lockstep (a simulation that waits for each plan): growth adds `edges` edges, fewer only
   // when the goal is reached, the pools run out or 20 x `edges` selections added none,
   // however long it takes, so that a seed reproduces a run exactly. now_ns only times the
   // phases.
-  CycleOutcome run_for_edges(FunctionRef<std::int64_t()> now_ns, std::uint64_t edges,
-                             FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
+  CycleOutcome run_for_edges(
+      FunctionRef<std::int64_t()> now_ns, std::uint64_t edges,
+      FunctionRef<TreeState(const Planner<V>&)> choose_target,
+      FunctionRef<void()> plan_chosen = [] {}) noexcept;
 
   // The committed plan, from the root of the current cycle (the state at the start of the
   // next cycle's execution); empty when the vehicle is to brake.
@@ -128,7 +134,8 @@ class ReplanningCycle {
  private:
   ReplanningCycle(Planner<V> planner, const CycleConfig& config, std::uint32_t cycle_steps);
   CycleOutcome run_growing(FunctionRef<std::int64_t()> now_ns, FunctionRef<bool()> stop_growing,
-                           FunctionRef<TreeState(const Planner<V>&)> choose_target) noexcept;
+                           FunctionRef<TreeState(const Planner<V>&)> choose_target,
+                           FunctionRef<void()> plan_chosen) noexcept;
   State predicted_state_without_plan() const noexcept;
   // The tree state the next cycle's plan starts from, if the tree has it.
   TreeState next_root() const noexcept;
