@@ -118,9 +118,8 @@ typename ReplanningCycle<V>::State ReplanningCycle<V>::next_plan_start() const n
 template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns,
                                      std::int64_t deadline_ns) noexcept {
-  return run(
-      now_ns, deadline_ns, [](const Planner<V>& planner) noexcept { return planner.best_state(); },
-      [] {});
+  return run(now_ns, deadline_ns,
+             [](const Planner<V>& planner) noexcept { return planner.best_state(); });
 }
 
 template <VehicleModel V>

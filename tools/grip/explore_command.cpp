@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "commands.hpp"
 #include "cycle_trace.hpp"
@@ -63,13 +64,6 @@ struct World {
 };
 
 Result<World> load_world(const ExploreOptions& o, VehicleKind robot) {
-  const Footprint footprint =
-      with_default_vehicle(robot, [](const auto& v) { return Footprint(v.footprint()); });
-  // The planner checks the start with its collision margin, for its cycle's integration step.
-  const double planner_margin_m = with_default_vehicle(robot, [](const auto& v) {
-    return step_collision_margin_m(
-        v, integration_step_for_cycle(rt::dds::PlannerParticipantConfig{}.cycle_s));
-  });
   if (o.map.empty()) {
     auto scene = make_scene(o.scene);
     if (!scene) return scene.error();
@@ -81,6 +75,14 @@ Result<World> load_world(const ExploreOptions& o, VehicleKind robot) {
   }
   auto loaded = sim::load_map(o.map);
   if (!loaded) return loaded.error();
+  // The chassis, and the collision margin the planner checks the start with (for its cycle's
+  // integration step).
+  const auto [footprint, planner_margin_m] = with_default_vehicle(robot, [](const auto& v) {
+    return std::pair<Footprint, double>{
+        v.footprint(),
+        step_collision_margin_m(
+            v, integration_step_for_cycle(rt::dds::PlannerParticipantConfig{}.cycle_s))};
+  });
   sim::StartPose start;
   if (o.start.empty()) {
     auto chosen = sim::choose_start(*loaded, footprint, planner_margin_m);
