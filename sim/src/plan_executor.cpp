@@ -100,7 +100,8 @@ PlanExecutor<V>::PlanExecutor(const V& vehicle, CollisionChecker checker, const 
 
 template <VehicleModel V>
 PlanVerdict PlanExecutor<V>::submit(std::span<const PlanStep> steps, std::int64_t start_time_ns,
-                                    const std::optional<State>& predicted_start) noexcept {
+                                    const std::optional<State>& predicted_start,
+                                    std::uint64_t tag) noexcept {
   const PlanVerdict verdict = [&] {
     if (steps.empty()) return PlanVerdict::kEmpty;
     if (steps.size() > config_.max_plan_steps) return PlanVerdict::kTooManySteps;
@@ -128,7 +129,7 @@ PlanVerdict PlanExecutor<V>::submit(std::span<const PlanStep> steps, std::int64_
     ++stats_.plans_rejected;
     return verdict;
   }
-  return enqueue(steps, start_time_ns, predicted_start);
+  return enqueue(steps, start_time_ns, predicted_start, tag);
 }
 
 template <VehicleModel V>
@@ -137,12 +138,13 @@ PlanVerdict PlanExecutor<V>::submit_brake(std::int64_t start_time_ns) noexcept {
     ++stats_.plans_rejected;
     return PlanVerdict::kStartsInThePast;
   }
-  return enqueue({}, start_time_ns, std::nullopt);
+  return enqueue({}, start_time_ns, std::nullopt, 0);
 }
 
 template <VehicleModel V>
 PlanVerdict PlanExecutor<V>::enqueue(std::span<const PlanStep> steps, std::int64_t start_time_ns,
-                                     const std::optional<State>& predicted_start) noexcept {
+                                     const std::optional<State>& predicted_start,
+                                     std::uint64_t tag) noexcept {
   // Queued plans starting at or after this one are superseded (they sit at the queue's tail).
   std::size_t keep = queue_size_;
   while (keep > 0 && slots_[queue_[keep - 1]].start_ns >= start_time_ns) --keep;
@@ -172,6 +174,7 @@ PlanVerdict PlanExecutor<V>::enqueue(std::span<const PlanStep> steps, std::int64
   }
   slot.start_ns = start_time_ns;
   slot.predicted_start = predicted_start;
+  slot.tag = tag;
   queue_[queue_size_++] = free_slot;
   ++stats_.plans_accepted;
   return PlanVerdict::kAccepted;
@@ -228,17 +231,17 @@ void PlanExecutor<V>::start_queued_plan() noexcept {
       mismatch = true;
     }
   }
+  if (mismatch && config_.refuse_start_mismatch) {
+    // Its controls would drive the vehicle where nobody checked. Braking here would be no
+    // better (nobody checked it here either): the vehicle goes on as it was.
+    ++stats_.plans_refused;
+    return;
+  }
   current_ = slot_index;
   piece_ = 0;
   mode_ = ExecutorMode::kExecuting;
   speed_started_ = true;
   ++stats_.plans_started;
-  if (mismatch && config_.brake_on_start_mismatch) {
-    // Its controls would drive the vehicle where nobody checked: brake instead.
-    stats_.plans_superseded += queue_size_;
-    queue_size_ = 0;
-    begin_contingency(ContingencyCause::kAbandoned);
-  }
 }
 
 template <VehicleModel V>

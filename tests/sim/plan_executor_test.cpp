@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "grip/rt/plan_ledger.hpp"
+
 namespace grip::sim {
 namespace {
 
@@ -178,6 +180,118 @@ TEST_F(DdVelocityExecutorTest, ADifferentPredictedStartIsRecordedAndTheControlsS
   EXPECT_EQ(executor.stats().start_mismatches, 1U);
   EXPECT_NEAR(executor.stats().max_start_position_error_m, 0.5, 1e-12);
   EXPECT_NEAR(executor.state()[0], 2.0, 1e-12);
+}
+
+TEST(PlanExecutorRefusalTest, AMismatchingPlanIsRefusedAndTheVehicleFinishesItsOwnPlan) {
+  const DdVelocity robot = DdVelocity::create(DdVelocityParams{}).value();
+  const OccupancyGrid truth = open_grid();
+  ExecutorConfig config;
+  config.refuse_start_mismatch = true;
+  auto executor =
+      PlanExecutor<DdVelocity>::create(robot, truth, robot.rest_state(1.0, 1.0, 0.0), 0, config)
+          .value();
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 2.0)}, 0, std::nullopt, 7),
+            PlanVerdict::kAccepted);
+  // Predicted at x = 1.5 for 1 s, where the vehicle will be at x = 2.0: refused, and the
+  // vehicle neither follows it nor brakes there; it drives its own plan to the end.
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(0.5, 1.0, 2.0)}, kSecond,
+                            DdVelocity::State(1.5, 1.0, 0.0), 8),
+            PlanVerdict::kAccepted);
+  executor.run_until(3 * kSecond / 2);
+  EXPECT_EQ(executor.executing_tag(), 7U);
+  EXPECT_EQ(executor.stats().start_mismatches, 1U);
+  EXPECT_EQ(executor.stats().plans_refused, 1U);
+  EXPECT_EQ(executor.stats().plans_started, 1U);
+  EXPECT_NEAR(executor.state()[0], 2.5, 1e-12);
+  EXPECT_NEAR(executor.state()[2], 0.0, 1e-12);
+  executor.run_until(3 * kSecond);
+  EXPECT_EQ(executor.mode(), ExecutorMode::kAtRest);
+  EXPECT_EQ(executor.executing_tag(), 0U);
+  EXPECT_EQ(executor.stats().plans_ran_out, 1U);
+  EXPECT_NEAR(executor.state()[0], 3.0, 1e-12);
+}
+
+TEST(PlanExecutorRefusalTest, ARestingVehicleStaysAtRestWhenItsPlanIsRefused) {
+  const DdVelocity robot = DdVelocity::create(DdVelocityParams{}).value();
+  const OccupancyGrid truth = open_grid();
+  ExecutorConfig config;
+  config.refuse_start_mismatch = true;
+  auto executor =
+      PlanExecutor<DdVelocity>::create(robot, truth, robot.rest_state(1.0, 1.0, 0.0), 0, config)
+          .value();
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 1.0)}, kSecond / 2,
+                            DdVelocity::State(1.0, 1.0, 0.1), 3),
+            PlanVerdict::kAccepted);
+  executor.run_until(2 * kSecond);
+  EXPECT_EQ(executor.mode(), ExecutorMode::kAtRest);
+  EXPECT_EQ(executor.stats().plans_refused, 1U);
+  EXPECT_NEAR(executor.state()[0], 1.0, 1e-12);
+  // The same plan from where the vehicle is runs.
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 1.0)}, 3 * kSecond,
+                            DdVelocity::State(1.0, 1.0, 0.0), 4),
+            PlanVerdict::kAccepted);
+  executor.run_until(7 * kSecond / 2);
+  EXPECT_EQ(executor.executing_tag(), 4U);
+  EXPECT_NEAR(executor.state()[0], 1.5, 1e-12);
+}
+
+// The planner's forecast of the controller (rt::PlanLedger) against the controller itself:
+// plans that match and start inside a tick, a refused plan, a brake plan, a plan started from a
+// braking vehicle. The forecast from a state measured part way must land exactly where the
+// executor does.
+TEST(PlanExecutorForecastTest, ThePlannersForecastLandsExactlyWhereTheControllerDoes) {
+  const DdAcceleration robot = DdAcceleration::create(DdAccelerationParams{}).value();
+  const OccupancyGrid truth = open_grid();
+  ExecutorConfig config;
+  config.refuse_start_mismatch = true;
+  const DdAcceleration::State start = robot.rest_state(1.0, 5.0, 0.0);
+  auto executor = PlanExecutor<DdAcceleration>::create(robot, truth, start, 0, config).value();
+  rt::PlanLedger<DdAcceleration> ledger(robot, 0.05, 64);
+  const auto send = [&](std::uint64_t cycle, std::int64_t at_ns, const DdAcceleration::State& from,
+                        const std::vector<PlanStep>& steps) {
+    ledger.record(cycle, static_cast<std::uint64_t>(at_ns), from, steps);
+    const PlanVerdict v =
+        steps.empty() ? executor.submit_brake(at_ns) : executor.submit(steps, at_ns, from, cycle);
+    ASSERT_EQ(v, PlanVerdict::kAccepted);
+  };
+  const auto forecast_from = [&](const DdAcceleration::State& q, std::int64_t stamp,
+                                 std::uint64_t executing, std::int64_t until) {
+    const auto f = ledger.forecast(q, static_cast<std::uint64_t>(stamp), executing,
+                                   static_cast<std::uint64_t>(until));
+    EXPECT_TRUE(f.has_value());
+    return f.value_or(rt::PlanLedger<DdAcceleration>::Forecast{});
+  };
+  constexpr std::int64_t kMs = 1'000'000;
+  send(1, 0, start, {piece(0.6, 0.6, 1.0), piece(0.6, 0.3, 0.55), piece(-0.6, -0.6, 0.5)});
+  executor.run_until(300 * kMs);
+  const DdAcceleration::State measured = executor.state();
+  ASSERT_EQ(executor.executing_tag(), 1U);
+  // Plan 2 starts inside a tick, from where plan 1 puts the vehicle then.
+  const auto at_525 = forecast_from(measured, 300 * kMs, 1, 525 * kMs);
+  EXPECT_EQ(at_525.cycle, 1U);
+  send(2, 525 * kMs, at_525.state, {piece(0.3, 0.6, 0.4), piece(0.6, 0.6, 2.0)});
+  send(3, 750 * kMs, measured, {piece(0.6, -0.6, 1.0)});  // not where the vehicle will be
+  send(4, 1200 * kMs, start, {});                         // brake
+  const auto at_1600 = forecast_from(measured, 300 * kMs, 1, 1600 * kMs);
+  EXPECT_EQ(at_1600.cycle, 0U) << "braking";
+  send(5, 1600 * kMs, at_1600.state, {piece(0.6, 0.0, 0.5)});
+
+  std::vector<std::pair<std::int64_t, DdAcceleration::State>> truth_at;
+  for (std::int64_t t : {525 * kMs, 800 * kMs, 1000 * kMs, 1600 * kMs, 1850 * kMs, 2400 * kMs}) {
+    executor.run_until(t);
+    truth_at.emplace_back(executor.now_ns(), executor.state());
+  }
+  EXPECT_EQ(executor.stats().plans_refused, 1U);
+  EXPECT_EQ(executor.stats().plans_started, 3U);
+  for (const auto& [t, q] : truth_at) {
+    const auto f = forecast_from(measured, 300 * kMs, 1, t);
+    for (int i = 0; i < 5; ++i) {
+      EXPECT_EQ(f.state[i], q[i]) << "component " << i << " at " << t / kMs << " ms";
+    }
+  }
+  EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 1000 * kMs).cycle, 2U);
+  EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 1850 * kMs).cycle, 5U);
+  EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 2400 * kMs).cycle, 0U) << "plan 5 ran out";
 }
 
 TEST(PlanExecutorCollisionTest, DrivingIntoAWallIsOneCollisionWithItsTimeAndPlace) {

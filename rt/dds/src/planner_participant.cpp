@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <span>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -23,6 +24,7 @@
 #include "grip/rt/dds/map_sync.hpp"
 #include "grip/rt/dds/topics.hpp"
 #include "grip/rt/periodic_loop.hpp"
+#include "grip/rt/plan_ledger.hpp"
 #include "grip/rt/replanning_cycle.hpp"
 #include "grip/rt/spsc_ring.hpp"
 #include "grip/rt/triple_buffer.hpp"
@@ -314,10 +316,15 @@ class PlannerParticipantFor final : public PlannerParticipant {
   // the publish thread wakes meanwhile and is running when the plan is handed over.
   std::atomic<bool> plan_coming_{false};
   std::uint64_t state_sequence_ = 0;
-  std::uint64_t chain_start_ns_ = 0;  // vehicle time at which the first plan from this tree starts
-  std::uint64_t plan_start_ns_ = 0;   // vehicle time at which this cycle's plan starts
+  std::uint64_t plan_start_ns_ = 0;  // vehicle time at which this cycle's plan starts
   std::uint64_t last_state_stamp_ns_ = 0;
   std::uint64_t resyncs_ = 0;
+  // The plans sent, to forecast where the vehicle will be (check_vehicle_follows).
+  std::optional<PlanLedger<V>> ledger_;
+  // This cycle's tree was started afresh where the vehicle, off its plans, will be: the
+  // forecast, with the plan it will then be executing.
+  std::optional<typename PlanLedger<V>::Forecast> off_plans_;
+  std::vector<PlanStep> continuation_;  // kMaxPlanSteps pieces, sized at start-up
   std::uint64_t cycles_ = 0;
   std::uint64_t misses_ = 0;          // cycles that ended after their deadline, or were skipped
   std::int64_t last_release_ns_ = 0;  // real time: the release of the last cycle run
@@ -653,20 +660,23 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
 
 template <VehicleModel V>
 void PlannerParticipantFor<V>::chain_plan_start(std::int64_t release_ns) noexcept {
-  // The plan starts at t[i], the next release, in vehicle time. Consecutive plans start exactly
-  // T apart, on the vehicle's own integration grid (the stamps of its states), so that each
-  // starts where the one before put the vehicle; the chain is re-anchored when the clocks have
-  // drifted by half a cycle.
+  // The plan starts at t[i], in vehicle time, at or after the next release: committed before
+  // the deadline, it reaches the vehicle before it is due (a late plan is refused). Consecutive
+  // plans start exactly T apart, on the vehicle's own integration grid (the stamps of its
+  // states), so that each starts where the one before put the vehicle. The chain is re-anchored
+  // only when a plan would start too early (more than T/8 before the release: the clock
+  // estimate moved) or needlessly late (more than 1.5 T after it); the forecast of
+  // check_vehicle_follows then moves the tree to the new start.
   const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
   const auto wanted = static_cast<std::uint64_t>(
       clock_.vehicle_ns(release_ns + period_wall_ns_.load(std::memory_order_relaxed), time_scale_));
   plan_start_ns_ += cycle_ns;
-  const std::uint64_t drift =
-      plan_start_ns_ > wanted ? plan_start_ns_ - wanted : wanted - plan_start_ns_;
-  if (2 * drift > cycle_ns && last_state_stamp_ns_ != 0) {
+  const bool too_early = plan_start_ns_ + cycle_ns / 8 < wanted;
+  const bool too_late = plan_start_ns_ > wanted + cycle_ns + cycle_ns / 2;
+  if ((too_early || too_late) && last_state_stamp_ns_ != 0) {
     const double cycles =
-        std::round(static_cast<double>(static_cast<std::int64_t>(wanted - last_state_stamp_ns_)) /
-                   static_cast<double>(cycle_ns));
+        std::ceil(static_cast<double>(static_cast<std::int64_t>(wanted - last_state_stamp_ns_)) /
+                  static_cast<double>(cycle_ns));
     plan_start_ns_ =
         last_state_stamp_ns_ + static_cast<std::uint64_t>(std::max(0.0, cycles)) * cycle_ns;
   }
@@ -710,24 +720,34 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, const MapC
   {
     // Planned during (t[i-1], t[i]) for execution from t[i], the next release. Without a plan
     // the vehicle is told to brake from t[i], as the tree predicts: it must not go on with the
-    // rest of its last plan, which the tree no longer follows.
+    // rest of its last plan, which the tree no longer follows. Unless the tree was just started
+    // afresh because the vehicle is off the plans: then it is sent the rest of the plan it
+    // executes, which ends in the braking checked when that plan was committed, rather than
+    // told to brake where nobody checked.
+    std::span<const PlanStep> sent;
+    State from = cycle_->plan_start();
+    if (out.plan_available) {
+      sent = std::span<const PlanStep>(cycle_->plan().data(), cycle_->plan().size());
+    } else if (off_plans_) {
+      sent = std::span<const PlanStep>(continuation_.data(),
+                                       ledger_->remainder(*off_plans_, continuation_));
+      from = off_plans_->state;
+    }
+    off_plans_.reset();
+    sent = sent.first(std::min<std::size_t>(sent.size(), grip_msg_kMaxPlanSteps));
     PlanSlot& slot = plans_->write_buffer();
     slot.cycle = cycles_;
     slot.start_time_ns = plan_start_ns_;
-    state_to_wire<V>(cycle_->plan_start(), slot.start_state.data(), slot.state_dim);
+    state_to_wire<V>(from, slot.start_state.data(), slot.state_dim);
     slot.state_sequence = state_sequence_;
-    const auto& plan = cycle_->plan();
-    slot.steps =
-        out.plan_available
-            ? static_cast<std::uint32_t>(std::min<std::size_t>(plan.size(), slot.step.size()))
-            : 0U;
+    slot.steps = static_cast<std::uint32_t>(sent.size());
     for (std::uint32_t i = 0; i < slot.steps; ++i) {
-      slot.step[i].control[0] = plan[i].control[0];
-      slot.step[i].control[1] = plan[i].control[1];
-      slot.step[i].duration_s = plan[i].duration_s;
+      slot.step[i].control[0] = sent[i].control[0];
+      slot.step[i].control[1] = sent[i].control[1];
+      slot.step[i].duration_s = sent[i].duration_s;
     }
     slot.committed_monotonic_ns = static_cast<std::uint64_t>(platform::now_ns());
-    if (chain_start_ns_ == 0) chain_start_ns_ = slot.start_time_ns;
+    ledger_->record(cycles_, plan_start_ns_, from, sent);
     plans_->publish();
     plans_committed_ += out.plan_available ? 1 : 0;
   }
@@ -759,29 +779,19 @@ void PlannerParticipantFor<V>::note_vehicle_state(const StateSample& measured) n
 
 template <VehicleModel V>
 void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured) noexcept {
-  // By this stamp the vehicle should be executing a plan. It is not: it brakes or rests on its
-  // contingency (a plan arrived late, or did not start where it was), and will go on doing so
-  // until the next plan starts, at plan_start_ns_. Braking is deterministic, so where it will
-  // be then is known now: when that is not where the tree puts the next plan's start, plan
-  // from there at once rather than waiting seconds for it to stop.
-  const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
-  if (measured.plan_cycle != 0 || chain_start_ns_ == 0 ||
-      measured.stamp_ns < chain_start_ns_ + cycle_ns) {
-    return;
-  }
-  // A state stamped after the next plan's start (the planner runs late) is taken as it is.
-  const double step_s = cycle_->planner().config().integration_step_s;
-  const std::uint64_t ahead_ns =
-      plan_start_ns_ > measured.stamp_ns ? plan_start_ns_ - measured.stamp_ns : 0;
-  const auto brake_steps =
-      static_cast<std::uint64_t>(std::llround(static_cast<double>(ahead_ns) * 1e-9 / step_s));
-  const State q = braked_state(vehicle_, state_of(measured), brake_steps, step_s);
-  // A controller refuses a plan that does not start where the vehicle is (states_match).
-  if (!states_match(q, cycle_->next_plan_start())) {
-    cycle_->resynchronise(q);
-    chain_start_ns_ = 0;  // the next plan starts a new chain
-    ++resyncs_;
-  }
+  // Where the vehicle will be when this cycle's plan starts, from the plan it reports executing
+  // and the plans sent since (PlanLedger). When that is not where the tree puts the plan's
+  // start (a plan came late or was refused, the vehicle brakes off its plans, the chain of
+  // start times was re-anchored), every plan from this tree would be refused: the next cycle
+  // starts a fresh tree there.
+  off_plans_.reset();
+  const auto forecast =
+      ledger_->forecast(state_of(measured), measured.stamp_ns, measured.plan_cycle, plan_start_ns_);
+  if (!forecast) return;  // it executes a plan older than the ledger: nothing to go by
+  if (states_match(forecast->state, cycle_->next_plan_start())) return;
+  cycle_->resynchronise(forecast->state);
+  off_plans_ = *forecast;
+  ++resyncs_;
 }
 
 // The frontier target is chosen again every target_refresh_cycles cycles, from where the plan
@@ -1054,6 +1064,8 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
   auto cycle = ReplanningCycle<V>::create(vehicle_, *grid_, planner_config, cycle_config);
   if (!cycle) return cycle.error();
   cycle_.emplace(std::move(cycle).value());
+  ledger_.emplace(vehicle_, planner_config.integration_step_s, grip_msg_kMaxPlanSteps);
+  continuation_.resize(grip_msg_kMaxPlanSteps);
 
   // Exploration's fixed memory, sized from the map, also at start-up (a goal may never come).
   const OccupancyGrid& grid = *grid_;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <iterator>
 #include <limits>
 #include <thread>
@@ -57,7 +56,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   const State start =
       vehicle.rest_state(config.start_x_m, config.start_y_m, config.start_theta_rad);
   ExecutorConfig executor_config;
-  executor_config.brake_on_start_mismatch = true;
+  executor_config.refuse_start_mismatch = true;
   auto executor = PlanExecutor<V>::create(vehicle, truth, start, kEpochNs, executor_config);
   if (!executor) return executor.error();
   const double dt = static_cast<double>(executor->step_ns()) * 1e-9;
@@ -67,14 +66,6 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   const auto t_sim = [&] { return static_cast<double>(executor->now_ns() - kEpochNs) * 1e-9; };
   std::vector<PlanStep> steps;
   steps.reserve(grip_msg_kMaxPlanSteps);
-  // Accepted plans by start time, to tell the planner which one is executing.
-  std::deque<std::pair<std::int64_t, std::uint64_t>> accepted;
-  const auto executing_cycle = [&]() -> std::uint64_t {
-    while (accepted.size() > 1 && accepted[1].first <= executor->now_ns()) accepted.pop_front();
-    const bool executing = executor->mode() == ExecutorMode::kExecuting && !accepted.empty() &&
-                           accepted.front().first <= executor->now_ns();
-    return executing ? accepted.front().second : 0;
-  };
   grip_msg_VehicleState state_msg{};  // the last state published
   const auto publish_state = [&] {
     state_msg.stamp_ns = static_cast<std::uint64_t>(executor->now_ns());
@@ -83,7 +74,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     rt::dds::state_to_wire<V>(executor->state(), state_msg.state, state_msg.state_dim);
     state_msg.time_scale = config.lockstep ? 1.0 : config.time_scale;
     state_msg.lockstep = config.lockstep;
-    state_msg.plan_cycle = executing_cycle();
+    // The plan executed in the tick that ended now (plans starting now have not started yet).
+    state_msg.plan_cycle = executor->executing_tag();
     state_msg.map_sequence = (*link)->map_sender().last_sequence();
     static_cast<void>((*link)->publish_state(state_msg));
   };
@@ -116,13 +108,12 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     }
     State predicted;
     for (int i = 0; i < V::kStateDim; ++i) predicted[i] = plan.start_state[i];
-    const PlanVerdict verdict = executor->submit(steps, start_ns, predicted);
+    const PlanVerdict verdict = executor->submit(steps, start_ns, predicted, plan.cycle);
     if (verdict != PlanVerdict::kAccepted) {
       ++report.plans_rejected;
       return;
     }
     ++report.plans_received;
-    accepted.push_back({start_ns, plan.cycle});
   };
   double best_coverage = coverage_of(sensed, *reachable);
   double coverage_gained_at = 0.0;

@@ -13,7 +13,8 @@
 // Plans: submit() queues a plan that starts at its start time (not before the current time);
 // submit_brake() queues a brake plan, which ends the executed plan at its start time.
 // The most recent plan governs from its start time on: a submitted plan replaces every queued
-// plan starting at or after it, and at its start time it replaces the plan being executed.
+// plan starting at or after it, and at its start time it replaces the plan being executed
+// (unless it is refused there: ExecutorConfig::refuse_start_mismatch).
 // When the executed plan runs out with nothing queued, or abandon_plans() is called (the
 // planner fell silent past its lease), the vehicle performs the model's braking contingency
 // (braking_control / brake_step) until it rests, then stays at rest until the next plan starts.
@@ -48,9 +49,11 @@ struct ExecutorConfig {
   std::uint32_t max_queued_plans = 4;         // plans waiting for their start time
   std::uint32_t max_collision_events = 1024;  // recorded in detail; all are counted
   std::uint32_t max_speed_samples = 72'000;   // one per tick: an hour at 20 Hz
-  // A plan whose predicted start differs from the vehicle's state is not executed: the vehicle
-  // brakes (its contingency) instead of following controls from a state nobody checked.
-  bool brake_on_start_mismatch = false;
+  // A plan whose predicted start differs from the vehicle's state is refused at its start time:
+  // its controls would drive the vehicle from a state nobody checked. The vehicle carries on
+  // with what it was doing, the rest of its plan (which ends in the braking the planner checked
+  // when it committed it) or its braking, as if the plan had never come.
+  bool refuse_start_mismatch = false;
 
   Status validate() const;
 };
@@ -98,6 +101,7 @@ struct ExecutorStats {
   std::uint64_t plans_started = 0;
   std::uint64_t plans_superseded = 0;  // queued plans replaced before they started
   std::uint64_t start_mismatches = 0;  // plans whose predicted start differed (!states_match)
+  std::uint64_t plans_refused = 0;     // ... and were not executed (refuse_start_mismatch)
   double max_start_position_error_m = 0.0;
   double max_start_heading_error_rad = 0.0;
   double distance_m = 0.0;     // sum of the reference point's chords per sub-step
@@ -122,9 +126,11 @@ class PlanExecutor {
 
   // Queues a plan (see the top of this file). `predicted_start`, when given, is the state the
   // planner expected at start_time_ns: the difference from the actual state at that time is
-  // recorded in stats() (it does not change what is executed).
+  // recorded in stats(), and with refuse_start_mismatch a mismatching plan is not executed.
+  // `tag` names the plan while it is executed (executing_tag(); the planner's cycle).
   PlanVerdict submit(std::span<const PlanStep> steps, std::int64_t start_time_ns,
-                     const std::optional<State>& predicted_start = std::nullopt) noexcept;
+                     const std::optional<State>& predicted_start = std::nullopt,
+                     std::uint64_t tag = 0) noexcept;
 
   // A brake plan (the planner had no plan for a cycle): from start_time_ns on, the plan being
   // executed is dropped and the vehicle brakes, until a plan queued after it starts. Queued
@@ -150,6 +156,10 @@ class PlanExecutor {
   // control held).
   double speed_m_s() const noexcept;
   std::size_t queued_plans() const noexcept { return queue_size_; }
+  // The tag of the plan being executed; 0 when braking or at rest.
+  std::uint64_t executing_tag() const noexcept {
+    return mode_ == ExecutorMode::kExecuting ? slots_[current_].tag : 0;
+  }
 
   const ExecutorStats& stats() const noexcept { return stats_; }
   // Mean speed since the first plan started over the model's maximum speed; 0 before.
@@ -164,6 +174,7 @@ class PlanExecutor {
     std::vector<std::int64_t> end_ns;  // absolute end time of each step
     std::int64_t start_ns = 0;
     std::optional<State> predicted_start;
+    std::uint64_t tag = 0;
   };
 
   PlanExecutor(const V& vehicle, CollisionChecker checker, const State& start,
@@ -172,7 +183,7 @@ class PlanExecutor {
   enum class ContingencyCause : std::uint8_t { kRanOut, kAbandoned, kBrakePlan };
 
   PlanVerdict enqueue(std::span<const PlanStep> steps, std::int64_t start_time_ns,
-                      const std::optional<State>& predicted_start) noexcept;
+                      const std::optional<State>& predicted_start, std::uint64_t tag) noexcept;
   void start_queued_plan() noexcept;
   void begin_contingency(ContingencyCause cause) noexcept;
   void integrate(std::int64_t until_ns) noexcept;

@@ -1,0 +1,149 @@
+#include "grip/rt/plan_ledger.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "grip/common/assert.hpp"
+#include "grip/vehicles/car.hpp"
+#include "grip/vehicles/dd_acceleration.hpp"
+#include "grip/vehicles/dd_velocity.hpp"
+
+namespace grip::rt {
+
+namespace {
+constexpr double kNsPerS = 1e9;
+}  // namespace
+
+template <VehicleModel V>
+PlanLedger<V>::PlanLedger(const V& vehicle, double step_s, std::uint32_t max_steps)
+    : vehicle_(vehicle), step_ns_(std::llround(step_s * kNsPerS)), max_steps_(max_steps) {
+  GRIP_ASSERT(step_ns_ > 0);
+  for (Entry& e : entries_) {
+    e.steps.reserve(max_steps);
+    e.end_ns.reserve(max_steps);
+  }
+}
+
+template <VehicleModel V>
+void PlanLedger<V>::record(std::uint64_t cycle, std::uint64_t start_ns, const State& start,
+                           std::span<const PlanStep> steps) noexcept {
+  Entry& e = entries_[next_];
+  next_ = (next_ + 1) % kCapacity;
+  count_ = std::min(count_ + 1, kCapacity);
+  e.cycle = cycle;
+  e.start_ns = static_cast<std::int64_t>(start_ns);
+  e.start = start;
+  const std::size_t n = std::min<std::size_t>(steps.size(), max_steps_);
+  e.steps.assign(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(n));
+  e.end_ns.clear();
+  std::int64_t t = e.start_ns;
+  for (const PlanStep& s : e.steps) {
+    t += std::llround(s.duration_s * kNsPerS);  // as the controller rounds it
+    e.end_ns.push_back(t);
+  }
+}
+
+template <VehicleModel V>
+const typename PlanLedger<V>::Entry* PlanLedger<V>::find(std::uint64_t cycle) const noexcept {
+  for (std::size_t i = 0; i < count_; ++i) {
+    const Entry& e = nth_oldest(i);
+    if (e.cycle == cycle && !e.steps.empty()) return &e;
+  }
+  return nullptr;
+}
+
+template <VehicleModel V>
+std::optional<typename PlanLedger<V>::Forecast> PlanLedger<V>::forecast(
+    const State& measured, std::uint64_t stamp_ns, std::uint64_t executing_cycle,
+    std::uint64_t until_ns) const noexcept {
+  const auto stamp = static_cast<std::int64_t>(stamp_ns);
+  const auto until = static_cast<std::int64_t>(std::max(until_ns, stamp_ns));
+  enum class Mode : std::uint8_t { kExecuting, kBraking, kAtRest };
+  State q = measured;
+  const Entry* current = nullptr;
+  std::size_t piece = 0;
+  Mode mode = vehicle_.is_stopped(q) ? Mode::kAtRest : Mode::kBraking;
+  if (executing_cycle != 0) {
+    current = find(executing_cycle);
+    if (current == nullptr) return std::nullopt;
+    piece = static_cast<std::size_t>(
+        std::upper_bound(current->end_ns.begin(), current->end_ns.end(), stamp) -
+        current->end_ns.begin());
+    mode = Mode::kExecuting;
+  }
+  // The plans still to come, as the controller queues them: each supersedes those queued to
+  // start at or after it.
+  std::array<const Entry*, kCapacity> queue{};
+  std::size_t queued = 0;
+  for (std::size_t i = 0; i < count_; ++i) {
+    const Entry& e = nth_oldest(i);
+    if (e.start_ns < stamp || e.cycle <= executing_cycle) continue;
+    while (queued > 0 && queue[queued - 1]->start_ns >= e.start_ns) --queued;
+    queue[queued++] = &e;
+  }
+  std::size_t next = 0;
+  const auto contingency = [&] { mode = vehicle_.is_stopped(q) ? Mode::kAtRest : Mode::kBraking; };
+  // Tick by tick from the stamp (the controller's ticks fall on its stamps), each split where a
+  // plan or a piece starts, as the controller integrates.
+  for (std::int64_t tick = stamp; tick < until; tick += step_ns_) {
+    const std::int64_t tick_end = std::min(until, tick + step_ns_);
+    std::int64_t t = tick;
+    while (t < tick_end) {
+      if (next < queued && queue[next]->start_ns <= t) {
+        const Entry& e = *queue[next++];
+        if (e.steps.empty()) {
+          if (mode == Mode::kExecuting) contingency();
+        } else if (states_match(q, e.start)) {
+          current = &e;
+          piece = 0;
+          mode = Mode::kExecuting;
+        }  // else refused: the vehicle goes on as it was
+      }
+      if (mode == Mode::kExecuting && piece == current->steps.size()) contingency();
+      std::int64_t end = tick_end;
+      if (next < queued) end = std::min(end, queue[next]->start_ns);
+      if (mode == Mode::kExecuting) end = std::min(end, current->end_ns[piece]);
+      const double h = static_cast<double>(end - t) / kNsPerS;
+      switch (mode) {
+        case Mode::kExecuting: {
+          const PlanStep& s = current->steps[piece];
+          q = vehicle_.step(q, typename V::Control(s.control[0], s.control[1]), h);
+          break;
+        }
+        case Mode::kBraking:
+          q = vehicle_.brake_step(q, h);
+          if (vehicle_.is_stopped(q)) mode = Mode::kAtRest;
+          break;
+        case Mode::kAtRest:
+          break;
+      }
+      t = end;
+      if (mode == Mode::kExecuting && t >= current->end_ns[piece]) ++piece;
+    }
+  }
+  Forecast f;
+  f.state = q;
+  // A plan whose last piece ended exactly now has run out: the vehicle brakes from here on.
+  if (mode == Mode::kExecuting && piece < current->steps.size()) {
+    f.cycle = current->cycle;
+    f.piece = static_cast<std::uint32_t>(piece);
+    f.left_in_piece_ns = current->end_ns[piece] - until;
+  }
+  return f;
+}
+
+template <VehicleModel V>
+std::uint32_t PlanLedger<V>::remainder(const Forecast& f, std::span<PlanStep> out) const noexcept {
+  const Entry* e = f.cycle != 0 ? find(f.cycle) : nullptr;
+  if (e == nullptr || f.piece >= e->steps.size() || out.empty()) return 0;
+  const auto n = static_cast<std::uint32_t>(std::min(out.size(), e->steps.size() - f.piece));
+  std::copy_n(e->steps.begin() + f.piece, n, out.begin());
+  out[0].duration_s = static_cast<double>(f.left_in_piece_ns) / kNsPerS;
+  return n;
+}
+
+template class PlanLedger<DdVelocity>;
+template class PlanLedger<DdAcceleration>;
+template class PlanLedger<Car>;
+
+}  // namespace grip::rt

@@ -1,0 +1,103 @@
+#include "grip/rt/plan_ledger.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "grip/vehicles/dd_velocity.hpp"
+
+namespace grip::rt {
+namespace {
+
+constexpr std::uint64_t kMs = 1'000'000;
+
+PlanStep piece(double u0, double u1, double duration_s) { return PlanStep{{u0, u1}, duration_s}; }
+
+class PlanLedgerTest : public ::testing::Test {
+ protected:
+  DdVelocity robot = DdVelocity::create(DdVelocityParams{}).value();
+  PlanLedger<DdVelocity> ledger{robot, 0.05, 16};
+  DdVelocity::State origin = robot.rest_state(1.0, 1.0, 0.0);
+};
+
+TEST_F(PlanLedgerTest, AVehicleOnAPlanIsForecastAlongIt) {
+  ledger.record(1, 0, origin, std::vector<PlanStep>{piece(1.0, 1.0, 2.0)});
+  // Measured 0.5 m on at 0.5 s; 1 m/s straight on until the plan ends at 2 s, then at rest.
+  const auto f = ledger.forecast(robot.rest_state(1.5, 1.0, 0.0), 500 * kMs, 1, 1500 * kMs);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NEAR(f->state[0], 2.5, 1e-12);
+  EXPECT_EQ(f->cycle, 1U);
+  EXPECT_EQ(f->left_in_piece_ns, 500 * static_cast<std::int64_t>(kMs));
+  const auto after = ledger.forecast(robot.rest_state(1.5, 1.0, 0.0), 500 * kMs, 1, 3000 * kMs);
+  ASSERT_TRUE(after.has_value());
+  EXPECT_NEAR(after->state[0], 3.0, 1e-12);
+  EXPECT_EQ(after->cycle, 0U) << "the plan ran out";
+}
+
+TEST_F(PlanLedgerTest, APlanNotStartingWhereTheVehicleWillBeIsRefused) {
+  ledger.record(1, 0, origin, std::vector<PlanStep>{piece(1.0, 1.0, 2.0)});
+  // Plan 2 expects the vehicle at x = 1.9 at 1 s; it will be at 2.0: refused.
+  ledger.record(2, 1000 * kMs, robot.rest_state(1.9, 1.0, 0.0),
+                std::vector<PlanStep>{piece(-1.0, -1.0, 1.0)});
+  const auto f = ledger.forecast(origin, 0, 1, 1500 * kMs);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NEAR(f->state[0], 2.5, 1e-12);
+  EXPECT_EQ(f->cycle, 1U);
+  // From where it will be, plan 3 (sent later, the same start) is taken.
+  ledger.record(3, 1000 * kMs, robot.rest_state(2.0, 1.0, 0.0),
+                std::vector<PlanStep>{piece(-1.0, -1.0, 1.0)});
+  const auto g = ledger.forecast(origin, 0, 1, 1500 * kMs);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_NEAR(g->state[0], 1.5, 1e-12);
+  EXPECT_EQ(g->cycle, 3U);
+}
+
+TEST_F(PlanLedgerTest, ABrakePlanEndsThePlanAndALaterPlanSupersedesQueuedOnes) {
+  ledger.record(1, 0, origin, std::vector<PlanStep>{piece(1.0, 1.0, 4.0)});
+  ledger.record(2, 2000 * kMs, robot.rest_state(3.0, 1.0, 0.0),
+                std::vector<PlanStep>{piece(1.0, -1.0, 1.0)});
+  ledger.record(3, 1000 * kMs, origin, {});  // brake from 1 s: supersedes plan 2
+  const auto f = ledger.forecast(origin, 0, 1, 3000 * kMs);
+  ASSERT_TRUE(f.has_value());
+  // A velocity-controlled robot stops at once: it rests where it was at 1 s.
+  EXPECT_NEAR(f->state[0], 2.0, 1e-12);
+  EXPECT_EQ(f->cycle, 0U);
+}
+
+TEST_F(PlanLedgerTest, APlanOlderThanTheLedgerGivesNoForecast) {
+  for (std::uint64_t cycle = 1; cycle <= PlanLedger<DdVelocity>::kCapacity + 1; ++cycle) {
+    ledger.record(cycle, cycle * 50 * kMs, origin, std::vector<PlanStep>{piece(1.0, 1.0, 1.0)});
+  }
+  EXPECT_FALSE(ledger.forecast(origin, 60 * kMs, 1, 100 * kMs).has_value());
+  EXPECT_TRUE(ledger.forecast(origin, 110 * kMs, 2, 150 * kMs).has_value());
+  ledger.clear();
+  EXPECT_FALSE(ledger.forecast(origin, 110 * kMs, 2, 150 * kMs).has_value());
+  // Nothing executing and nothing sent: it stays where it rests.
+  const auto f = ledger.forecast(origin, 110 * kMs, 0, 500 * kMs);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_EQ(f->state, origin);
+}
+
+TEST_F(PlanLedgerTest, TheRemainderOfAPlanIsItsRestFromTheForecastOn) {
+  const std::vector<PlanStep> plan{piece(1.0, 1.0, 0.5), piece(0.5, 1.0, 0.75),
+                                   piece(1.0, 0.5, 0.25)};
+  ledger.record(4, 1000 * kMs, origin, plan);
+  const auto f = ledger.forecast(origin, 1000 * kMs, 0, 1800 * kMs);
+  ASSERT_TRUE(f.has_value());
+  ASSERT_EQ(f->cycle, 4U);
+  std::array<PlanStep, 8> rest{};
+  ASSERT_EQ(ledger.remainder(*f, rest), 2U);
+  EXPECT_DOUBLE_EQ(rest[0].duration_s, 0.45);  // of the second piece, 0.3 s have passed
+  EXPECT_EQ(rest[0].control, plan[1].control);
+  EXPECT_EQ(rest[1].duration_s, plan[2].duration_s);
+  EXPECT_EQ(rest[1].control, plan[2].control);
+  // Nothing executing: no remainder.
+  const auto idle = ledger.forecast(origin, 3000 * kMs, 0, 3100 * kMs);
+  ASSERT_TRUE(idle.has_value());
+  EXPECT_EQ(ledger.remainder(*idle, rest), 0U);
+}
+
+}  // namespace
+}  // namespace grip::rt
