@@ -20,10 +20,17 @@ OccupancyGrid open_grid(double w_m = 20.0, double h_m = 10.0) {
   return std::move(grid).value();
 }
 
+// As grip sim runs it: a plan that does not start where the vehicle is gets refused.
+ExecutorConfig refusing() {
+  ExecutorConfig config;
+  config.refuse_start_mismatch = true;
+  return config;
+}
+
 template <typename V>
 PlanExecutor<V> make_executor(const V& vehicle, const OccupancyGrid& truth,
-                              const typename V::State& start) {
-  auto executor = PlanExecutor<V>::create(vehicle, truth, start, 0);
+                              const typename V::State& start, const ExecutorConfig& config = {}) {
+  auto executor = PlanExecutor<V>::create(vehicle, truth, start, 0, config);
   EXPECT_TRUE(executor.ok()) << (executor.ok() ? "" : executor.error().message);
   return std::move(executor).value();
 }
@@ -185,11 +192,7 @@ TEST_F(DdVelocityExecutorTest, ADifferentPredictedStartIsRecordedAndTheControlsS
 TEST(PlanExecutorRefusalTest, AMismatchingPlanIsRefusedAndTheVehicleFinishesItsOwnPlan) {
   const DdVelocity robot = DdVelocity::create(DdVelocityParams{}).value();
   const OccupancyGrid truth = open_grid();
-  ExecutorConfig config;
-  config.refuse_start_mismatch = true;
-  auto executor =
-      PlanExecutor<DdVelocity>::create(robot, truth, robot.rest_state(1.0, 1.0, 0.0), 0, config)
-          .value();
+  auto executor = make_executor(robot, truth, robot.rest_state(1.0, 1.0, 0.0), refusing());
   ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 2.0)}, 0, std::nullopt, 7),
             PlanVerdict::kAccepted);
   // Predicted at x = 1.5 for 1 s, where the vehicle will be at x = 2.0: refused, and the
@@ -214,11 +217,7 @@ TEST(PlanExecutorRefusalTest, AMismatchingPlanIsRefusedAndTheVehicleFinishesItsO
 TEST(PlanExecutorRefusalTest, ARestingVehicleStaysAtRestWhenItsPlanIsRefused) {
   const DdVelocity robot = DdVelocity::create(DdVelocityParams{}).value();
   const OccupancyGrid truth = open_grid();
-  ExecutorConfig config;
-  config.refuse_start_mismatch = true;
-  auto executor =
-      PlanExecutor<DdVelocity>::create(robot, truth, robot.rest_state(1.0, 1.0, 0.0), 0, config)
-          .value();
+  auto executor = make_executor(robot, truth, robot.rest_state(1.0, 1.0, 0.0), refusing());
   ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 1.0)}, kSecond / 2,
                             DdVelocity::State(1.0, 1.0, 0.1), 3),
             PlanVerdict::kAccepted);
@@ -242,10 +241,8 @@ TEST(PlanExecutorRefusalTest, ARestingVehicleStaysAtRestWhenItsPlanIsRefused) {
 TEST(PlanExecutorForecastTest, ThePlannersForecastLandsExactlyWhereTheControllerDoes) {
   const DdAcceleration robot = DdAcceleration::create(DdAccelerationParams{}).value();
   const OccupancyGrid truth = open_grid();
-  ExecutorConfig config;
-  config.refuse_start_mismatch = true;
   const DdAcceleration::State start = robot.rest_state(1.0, 5.0, 0.0);
-  auto executor = PlanExecutor<DdAcceleration>::create(robot, truth, start, 0, config).value();
+  auto executor = make_executor(robot, truth, start, refusing());
   rt::PlanLedger<DdAcceleration> ledger(robot, 0.05, 64);
   const auto send = [&](std::uint64_t cycle, std::int64_t at_ns, const DdAcceleration::State& from,
                         const std::vector<PlanStep>& steps) {

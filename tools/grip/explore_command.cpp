@@ -213,7 +213,8 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
             << " of top\n  planner cycles " << r.cycles << ", deadline misses " << r.deadline_misses
             << ", plans " << r.plans_received << " (rejected " << r.plans_rejected << ", "
             << r.brake_plans << " to brake, " << r.start_mismatches
-            << " not starting where the vehicle was), contingency stops " << r.contingency_stops
+            << " refused: not starting where the vehicle was), contingency stops "
+            << r.contingency_stops
             << "\n";
   if (!o.report.empty()) {
     std::ofstream out(o.report);

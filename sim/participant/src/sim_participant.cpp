@@ -266,7 +266,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   report.retraced_fraction = retraced_distance(report.trajectory, radius / 4.0, radius).fraction();
   report.mean_speed_fraction = executor->mean_speed_fraction();
   report.contingency_stops = stats.contingencies;
-  report.start_mismatches = stats.start_mismatches;
+  report.start_mismatches = stats.plans_refused;
   report.max_start_error_m = stats.max_start_position_error_m;
   report.wall_time_s = static_cast<double>(platform::now_ns() - wall0) * 1e-9;
   report.max_speed_m_s = vehicle.max_speed_m_s();
