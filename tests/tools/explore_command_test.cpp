@@ -180,6 +180,25 @@ TEST(ExploreCommand, LockstepExplorationCompletesWithoutCollisionAndASeedReprodu
   EXPECT_EQ(reports[0], reports[1]) << "the same seed gave two different runs";
 }
 
+// Plans lost on the way (as if they came too late): the vehicle goes on with the plan it has,
+// the planner sees from its states that it does not follow the plans it was sent, and plans
+// from where it will be. A lost plan costs at most one refused plan after it, never a
+// collision.
+TEST(ExploreCommand, LostPlansAreNoticedAndCostAtMostOneRefusedPlanEach) {
+  const std::string map = write_small_map();
+  const std::string report = ::testing::TempDir() + "grip-lockstep-dropped.json";
+  const CommandRun r = run("explore --map " + map +
+                           " --robot dd-accel --lockstep --seed 3 --max-sim-time 60 "
+                           "--drop-plans 0.1 --domain 87 --report " +
+                           report);
+  ASSERT_TRUE(r.status == 0 || r.status == 3) << r.output;
+  const nlohmann::json j = read_json(report);
+  expect_a_sane_run(j, r.output);
+  const int dropped = j.at("plans_dropped").get<int>();
+  EXPECT_GT(dropped, 20) << r.output;
+  EXPECT_LE(j.at("start_mismatches").get<int>(), dropped) << r.output;
+}
+
 // A lockstep simulator repeats the state it waits on, so a planner that starts later still
 // gets it (and a snapshot of the map sensed so far).
 TEST(ExploreCommand, LockstepSimulatorWaitsForAPlannerThatStartsLater) {

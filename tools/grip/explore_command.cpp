@@ -47,6 +47,7 @@ struct ExploreOptions {
   double max_sim_time_s = kDefaultMaxSimTimeS;
   bool no_safety = false;
   bool lockstep = false;
+  double drop_plans = 0.0;
   std::uint32_t lockstep_edges = kDefaultLockstepEdges;
   unsigned domain = 0;
   std::string report;
@@ -124,6 +125,7 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
   j["contingency_stops"] = r.contingency_stops;
   j["brake_plans"] = r.brake_plans;
   j["start_mismatches"] = r.start_mismatches;
+  j["plans_dropped"] = r.plans_dropped;
   j["max_start_error_m"] = r.max_start_error_m;
   j["planner_losses"] = r.planner_losses;
   j["world"] = world.name;
@@ -213,9 +215,10 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
             << " of top\n  planner cycles " << r.cycles << ", deadline misses " << r.deadline_misses
             << ", plans " << r.plans_received << " (rejected " << r.plans_rejected << ", "
             << r.brake_plans << " to brake, " << r.start_mismatches
-            << " refused: not starting where the vehicle was), contingency stops "
-            << r.contingency_stops
-            << "\n";
+            << " refused: not starting where the vehicle was"
+            << (r.plans_dropped > 0 ? ", " + std::to_string(r.plans_dropped) + " dropped on purpose"
+                                    : "")
+            << "), contingency stops " << r.contingency_stops << "\n";
   if (!o.report.empty()) {
     std::ofstream out(o.report);
     out << report_json(o, world, r).dump(1) << "\n";
@@ -244,6 +247,8 @@ sim::SimRunConfig sim_config(const ExploreOptions& o, VehicleKind robot, const W
   c.time_scale = o.time_scale;
   c.lockstep = o.lockstep;
   c.max_sim_time_s = o.max_sim_time_s;
+  c.drop_plans = o.drop_plans;
+  c.drop_seed = o.seed;
   return c;
 }
 
@@ -359,6 +364,11 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
       "--lockstep", o.lockstep,
       "Deterministic: the simulator waits for each plan, the planner grows a fixed number "
       "of edges per cycle; as fast as the machine allows (--time-scale unused)");
+  cmd->add_option("--drop-plans", o.drop_plans,
+                  "Fault injection: the vehicle loses each plan with this probability (as if it "
+                  "came too late; drawn from --seed)")
+      ->check(CLI::Range(0.0, 0.5))
+      ->capture_default_str();
   cmd->add_option("--domain", o.domain, "DDS domain id")->capture_default_str();
   cmd->add_option("--report", o.report, "Write the JSON report here");
   cmd->add_option("--image", o.image, "Draw the run into this PNG");

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iterator>
 #include <limits>
+#include <random>
 #include <thread>
 
 #include "grip/platform/clock.hpp"
@@ -90,7 +91,13 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   publish_state();
 
   // A plan as the controller takes it: from its start time, from the state it predicts there.
+  std::mt19937_64 drop_stream(config.drop_seed);
+  std::bernoulli_distribution drop(config.drop_plans);
   const auto submit = [&](const grip_msg_Plan& plan) {
+    if (config.drop_plans > 0.0 && drop(drop_stream)) {
+      ++report.plans_dropped;
+      return;
+    }
     const auto start_ns = static_cast<std::int64_t>(plan.start_time_ns);
     if (plan.steps._length == 0) {  // no plan for this cycle: brake from its start time
       if (executor->submit_brake(start_ns) != PlanVerdict::kAccepted) {

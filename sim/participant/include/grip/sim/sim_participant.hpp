@@ -49,6 +49,12 @@ struct SimRunConfig {
   double stuck_after_s = 300.0;
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
   std::chrono::nanoseconds planner_wait{std::chrono::seconds(30)};  // for the first plan
+  // Fault injection: each plan received is lost with this probability before the controller
+  // sees it (a stand-in for a plan that came too late), drawn from a stream seeded by
+  // drop_seed, so that a lockstep run still reproduces. The planner must notice from the
+  // vehicle's states that it does not follow the plans it was sent.
+  double drop_plans = 0.0;
+  std::uint64_t drop_seed = 1;
   // Called once the run has ended, before the simulator leaves DDS: a planner in the same
   // process can be stopped first, rather than report the vehicle lost.
   std::function<void()> on_finished;
@@ -86,6 +92,7 @@ struct SimRunReport {
   double mean_speed_fraction = 0.0;
   std::uint64_t plans_received = 0;
   std::uint64_t plans_rejected = 0;
+  std::uint64_t plans_dropped = 0;  // lost on purpose (SimRunConfig::drop_plans)
   std::uint64_t contingency_stops = 0;
   std::uint64_t brake_plans = 0;       // plans without steps: the planner had nothing safe
   std::uint64_t start_mismatches = 0;  // plans refused at their start: not where the vehicle was
