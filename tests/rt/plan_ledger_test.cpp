@@ -72,10 +72,10 @@ TEST_F(PlanLedgerTest, APlanOlderThanTheLedgerGivesNoForecast) {
   }
   EXPECT_FALSE(ledger.forecast(origin, 60 * kMs, 1, 100 * kMs).has_value());
   EXPECT_TRUE(ledger.forecast(origin, 110 * kMs, 2, 150 * kMs).has_value());
-  ledger.clear();
-  EXPECT_FALSE(ledger.forecast(origin, 110 * kMs, 2, 150 * kMs).has_value());
   // Nothing executing and nothing sent: it stays where it rests.
-  const auto f = ledger.forecast(origin, 110 * kMs, 0, 500 * kMs);
+  const PlanLedger<DdVelocity> empty(robot, 0.05, 16);
+  EXPECT_FALSE(empty.forecast(origin, 110 * kMs, 2, 150 * kMs).has_value());
+  const auto f = empty.forecast(origin, 110 * kMs, 0, 500 * kMs);
   ASSERT_TRUE(f.has_value());
   EXPECT_EQ(f->state, origin);
 }

@@ -43,7 +43,6 @@ class PlanLedger {
   // A plan sent (steps empty: a brake plan). Plans are recorded in the order they are sent.
   void record(std::uint64_t cycle, std::uint64_t start_ns, const State& start,
               std::span<const PlanStep> steps) noexcept;
-  void clear() noexcept { count_ = 0; }
 
   // The vehicle was in `measured` at stamp_ns, having executed plan `executing_cycle` (0: none)
   // up to then; the recorded plans starting at or after stamp_ns are still to come. Where it
