@@ -16,6 +16,7 @@
 // A benchmark: it measures and prints, it asserts nothing.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +38,8 @@
 #include "grip/rt/dds/vehicle_link.hpp"
 #include "grip/rt/latency_histogram.hpp"
 #include "grip/scenes/scenes.hpp"
+#include "grip/sim/plan_executor.hpp"
+#include "grip/sim/sim_participant.hpp"
 
 namespace grip::tools {
 
@@ -63,9 +66,12 @@ struct PlannerSide {
   nlohmann::json report;  // the planner process's own (hand-off and write times, misses)
   double mean_plan_bytes = 0.0;
   std::uint64_t plans = 0;
+  double distance_m = 0.0;  // driven by the vehicle side
+  std::uint64_t goals_reached = 0;
+  std::uint64_t refused = 0;  // plans not starting where the vehicle was
 };
 
-// The vehicle side of the planner run: a dd-vel robot at rest at the start of "rooms".
+// The vehicle side of the planner run: a dd-vel robot starting at rest at the start of "rooms".
 Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
   Scene scene = make_scene("rooms").value();
   rt::dds::VehicleLinkConfig config;
@@ -94,38 +100,60 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
   auto planner = Child::spawn(std::move(args), {}, "/dev/null");
   if (!planner) return planner.error();
 
-  grip_msg_Goal goal{};
-  goal.x_m = scene.goal_x_m;
-  goal.y_m = scene.goal_y_m;
-  goal.radius_m = scene.goal_radius_m;
-  if (Status s = (*link)->publish_goal(goal); !s) return s.error();
+  // The vehicle follows the plans as a controller does (PlanExecutor, refusing plans that do
+  // not start where it is), so that the planner replans as it would on a vehicle: a vehicle
+  // that stood still while claiming to follow them would be planned for afresh every cycle.
+  // It shuttles between the scene's goal and its start, so that the planner always has a way
+  // to plan, for the whole run.
+  const DdVelocity robot = DdVelocity::create(DdVelocityParams{}).value();
+  sim::ExecutorConfig executor_config;
+  executor_config.refuse_start_mismatch = true;
+  auto executor = sim::PlanExecutor<DdVelocity>::create(
+      robot, scene.grid, robot.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad),
+      platform::now_ns(), executor_config);
+  if (!executor) return executor.error();
+  std::vector<PlanStep> steps;
+  steps.reserve(grip_msg_kMaxPlanSteps);
+  const std::array<std::array<double, 2>, 2> goals{
+      {{scene.goal_x_m, scene.goal_y_m}, {scene.start_x_m, scene.start_y_m}}};
+  std::size_t goal_index = 0;
+  std::uint64_t goals_sent = 0;
+  const auto publish_goal = [&] {
+    grip_msg_Goal goal{};
+    goal.sequence_number = ++goals_sent;
+    goal.x_m = goals[goal_index][0];
+    goal.y_m = goals[goal_index][1];
+    goal.radius_m = scene.goal_radius_m;
+    goal.stamp_ns = static_cast<std::uint64_t>(executor->now_ns());
+    return (*link)->publish_goal(goal);
+  };
+  if (Status s = publish_goal(); !s) return s.error();
   PlannerSide out;
   double bytes = 0.0;
   std::uint64_t sequence = 0;
   const auto until =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(o.duration_s + 35.0);
-  std::int64_t next_state = platform::now_ns();
   bool seen_plans = false;
-  std::uint64_t last_cycle = 0;
   while (std::chrono::steady_clock::now() < until) {
     const std::int64_t now = platform::now_ns();
-    if (now >= next_state) {
+    if (now >= executor->now_ns() + executor->step_ns()) {
+      executor->run_until(now);
+      const DdVelocity::State& q = executor->state();
       grip_msg_VehicleState state{};
-      state.stamp_ns = static_cast<std::uint64_t>(now);
+      state.stamp_ns = static_cast<std::uint64_t>(executor->now_ns());
       state.sequence_number = ++sequence;
       state.kind = grip_msg_DD_VELOCITY;
-      state.state[0] = scene.start_x_m;
-      state.state[1] = scene.start_y_m;
-      state.state[2] = scene.start_theta_rad;
-      state.state_dim = 3;
+      rt::dds::state_to_wire<DdVelocity>(q, state.state, state.state_dim);
       state.time_scale = 1.0;
-      // It claims to follow the plans, so that the planner replans as it would for a vehicle
-      // that does (rather than re-planning from a stopped one every cycle): the figure is the
-      // delivery, not the driving.
-      state.plan_cycle = last_cycle;
+      state.plan_cycle = executor->executing_tag();
       static_cast<void>((*link)->publish_state(state));
-      (*link)->answer_map_requests(static_cast<std::uint64_t>(now));
-      next_state = now + 50'000'000;
+      (*link)->answer_map_requests(state.stamp_ns);
+      const auto& goal = goals[goal_index];
+      if (std::hypot(q[0] - goal[0], q[1] - goal[1]) <= scene.goal_radius_m) {
+        goal_index = 1 - goal_index;
+        ++out.goals_reached;
+        static_cast<void>(publish_goal());
+      }
     }
     if (const grip_msg_Plan* plan = (*link)->take_plan()) {
       out.latency.record(platform::now_ns() -
@@ -133,15 +161,17 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
       bytes += static_cast<double>(sizeof(grip_msg_Plan) - sizeof(plan->steps) + 4 +
                                    plan->steps._length * sizeof(grip_msg_PlanStep));
       ++out.plans;
-      last_cycle = plan->cycle;
+      static_cast<void>(sim::submit_wire_plan(*executor, *plan, steps));
       seen_plans = true;
     } else if (seen_plans && !(*link)->planner_alive()) {
       break;  // the planner finished its duration
     }
     // Woken by the plan's arrival, as a controller would be (ddsperf waits the same way).
-    (*link)->wait_for_plan_or_request(std::chrono::nanoseconds(
-        std::clamp<std::int64_t>(next_state - platform::now_ns(), 0, 50'000'000)));
+    (*link)->wait_for_plan_or_request(std::chrono::nanoseconds(std::clamp<std::int64_t>(
+        executor->now_ns() + executor->step_ns() - platform::now_ns(), 0, 50'000'000)));
   }
+  out.distance_m = executor->stats().distance_m;
+  out.refused = executor->stats().plans_refused;
   // It ends after its duration, having written its report.
   if (const int status = planner->wait(); status != 0) {
     return Error{ErrorCode::kIo, "the planner process ended with status " + std::to_string(status)};
@@ -283,12 +313,24 @@ int run_bench_dds(const BenchDdsOptions& o) {
       "dds_write p50 %.1f us, p99 %.1f us\n",
       handoff.value("p50", 0.0), handoff.value("p99", 0.0), write.value("p50", 0.0),
       write.value("p99", 0.0));
+  // What the plans were for: a vehicle that follows them (the planner replans from where they
+  // put it, not from scratch).
+  const std::uint64_t off_plans = ours->report.value("resyncs", std::uint64_t{0});
+  std::printf(
+      "the vehicle followed them: %.1f m driven, %llu goals reached, %llu plans refused; the "
+      "planner found it off its plans %llu times\n",
+      ours->distance_m, static_cast<unsigned long long>(ours->goals_reached),
+      static_cast<unsigned long long>(ours->refused), static_cast<unsigned long long>(off_plans));
   if (!o.json.empty()) {
     nlohmann::json j;
     j["planner"] = summary_us(ours->latency);
     j["planner"]["mean_plan_bytes"] = ours->mean_plan_bytes;
     j["planner"]["handoff_us"] = handoff;
     j["planner"]["write_us"] = write;
+    j["vehicle"] = {{"distance_m", ours->distance_m},
+                    {"goals_reached", ours->goals_reached},
+                    {"plans_refused", ours->refused},
+                    {"planner_found_it_off_its_plans", off_plans}};
     j["ddsperf"] = {{"payload_bytes", payload},
                     {"round_trips", ddsperf->count()},
                     {"p50_us_median", median(ddsperf->p50_us)},

@@ -155,7 +155,7 @@ int run_planner(const PlannerOptions& o) {
             << " write failures\n  rejected: " << r.rejected_vehicle_state << " states, "
             << r.rejected_map_update << " map updates, " << r.rejected_goal << " goals; map gaps "
             << r.map_gaps << ", heals " << r.map_heals << "; vehicle lost " << r.vehicle_losses
-            << " times\n"
+            << " times, off its plans " << r.resyncs << " times\n"
             << "  planning thread after warm-up: "
             << (r.allocations_counted ? std::to_string(r.heap_allocations_in_loop)
                                       : std::string("(not counted)"))
@@ -183,6 +183,7 @@ int run_planner(const PlannerOptions& o) {
                 {"sequence", r.map_sequence},
                 {"checksum", r.map_checksum}};
     j["vehicle_losses"] = r.vehicle_losses;
+    j["resyncs"] = r.resyncs;
     j["heap_allocations_in_loop"] =
         r.allocations_counted ? nlohmann::json(r.heap_allocations_in_loop) : nullptr;
     j["page_faults_in_loop"] = r.usage_in_loop.minor_faults + r.usage_in_loop.major_faults;

@@ -98,28 +98,11 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       ++report.plans_dropped;
       return;
     }
-    const auto start_ns = static_cast<std::int64_t>(plan.start_time_ns);
-    if (plan.steps._length == 0) {  // no plan for this cycle: brake from its start time
-      if (executor->submit_brake(start_ns) != PlanVerdict::kAccepted) {
-        ++report.plans_rejected;
-        return;
-      }
-      ++report.plans_received;
-      ++report.brake_plans;
-      return;
-    }
-    steps.clear();
-    for (std::uint32_t i = 0; i < plan.steps._length; ++i) {
-      const grip_msg_PlanStep& s = plan.steps._buffer[i];
-      steps.push_back(PlanStep{{s.control[0], s.control[1]}, s.duration_s});
-    }
-    State predicted;
-    for (int i = 0; i < V::kStateDim; ++i) predicted[i] = plan.start_state[i];
-    const PlanVerdict verdict = executor->submit(steps, start_ns, predicted, plan.cycle);
-    if (verdict != PlanVerdict::kAccepted) {
+    if (submit_wire_plan(*executor, plan, steps) != PlanVerdict::kAccepted) {
       ++report.plans_rejected;
       return;
     }
+    if (plan.steps._length == 0) ++report.brake_plans;
     ++report.plans_received;
   };
   double best_coverage = coverage_of(sensed, *reachable);

@@ -25,8 +25,10 @@
 
 #include "grip/common/result.hpp"
 #include "grip/platform/dds/participant.hpp"
+#include "grip/sim/plan_executor.hpp"
 #include "grip/vehicles/vehicle.hpp"
 #include "grip/world/occupancy_grid.hpp"
+#include "plan.h"
 #include "planner_status.h"
 
 namespace grip::sim {
@@ -105,6 +107,24 @@ struct SimRunReport {
   std::optional<OccupancyGrid> known;  // what was sensed
   std::optional<grip_msg_PlannerStatus> last_status;
 };
+
+// A plan from the wire as a controller takes it: without steps, a brake plan from its start
+// time; else its steps from its start time, from the state it predicts there, tagged with its
+// cycle (the vehicle's state reports it while it is executed). `steps` is scratch memory.
+template <VehicleModel V>
+PlanVerdict submit_wire_plan(PlanExecutor<V>& executor, const grip_msg_Plan& plan,
+                             std::vector<PlanStep>& steps) noexcept {
+  const auto start_ns = static_cast<std::int64_t>(plan.start_time_ns);
+  if (plan.steps._length == 0) return executor.submit_brake(start_ns);
+  steps.clear();
+  for (std::uint32_t i = 0; i < plan.steps._length; ++i) {
+    const grip_msg_PlanStep& s = plan.steps._buffer[i];
+    steps.push_back(PlanStep{{s.control[0], s.control[1]}, s.duration_s});
+  }
+  typename V::State predicted;
+  for (int i = 0; i < V::kStateDim; ++i) predicted[i] = plan.start_state[i];
+  return executor.submit(steps, start_ns, predicted, plan.cycle);
+}
 
 // Runs until the end conditions above or `stop`. The truth must have the start free.
 Result<SimRunReport> run_simulation(const SimRunConfig& config, const OccupancyGrid& truth,
