@@ -782,7 +782,7 @@ void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured
   // Where the vehicle will be when this cycle's plan starts, from the plan it reports executing
   // and the plans sent since (PlanLedger). When that is not where the tree puts the plan's
   // start (a plan came late or was refused, the vehicle brakes off its plans, the chain of
-  // start times was re-anchored), every plan from this tree would be refused: the next cycle
+  // start times was re-anchored), every plan from this tree would be refused: this cycle
   // starts a fresh tree there.
   off_plans_.reset();
   const auto forecast =

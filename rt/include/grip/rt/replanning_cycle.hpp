@@ -94,8 +94,9 @@ class ReplanningCycle {
   // its clearance only near it (Planner::note_changed). Every change must be noted, or none.
   void note_changed(const CellBox& box) noexcept { planner_.note_changed(box); }
 
-  // The vehicle is not where the plans put it (it brakes or rests on its contingency): the
-  // next cycle starts a fresh tree at q, the state the vehicle will hold at its start.
+  // The vehicle is not where the plans put it (a plan came late or was refused, it brakes on
+  // its contingency): the next run starts a fresh tree at q, the state the vehicle will hold
+  // at that plan's start.
   void resynchronise(const State& q) noexcept { resync_ = q; }
   // Where the next cycle's plan starts if the vehicle follows the committed plan: T along it,
   // or, when it is shorter than T or there is none, where braking at its end leads.
