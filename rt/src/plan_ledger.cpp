@@ -58,11 +58,11 @@ std::optional<typename PlanLedger<V>::Forecast> PlanLedger<V>::forecast(
     std::uint64_t until_ns) const noexcept {
   const auto stamp = static_cast<std::int64_t>(stamp_ns);
   const auto until = static_cast<std::int64_t>(std::max(until_ns, stamp_ns));
-  enum class Mode : std::uint8_t { kExecuting, kBraking, kAtRest };
+  using Mode = ControllerMode;
   State q = measured;
   const Entry* current = nullptr;
   std::size_t piece = 0;
-  Mode mode = vehicle_.is_stopped(q) ? Mode::kAtRest : Mode::kBraking;
+  Mode mode = contingency_mode(vehicle_, q);
   if (executing_cycle != 0) {
     current = find(executing_cycle);
     if (current == nullptr) return std::nullopt;
@@ -82,7 +82,6 @@ std::optional<typename PlanLedger<V>::Forecast> PlanLedger<V>::forecast(
     queue[queued++] = &e;
   }
   std::size_t next = 0;
-  const auto contingency = [&] { mode = vehicle_.is_stopped(q) ? Mode::kAtRest : Mode::kBraking; };
   // Tick by tick from the stamp (the controller's ticks fall on its stamps), each split where a
   // plan or a piece starts, as the controller integrates.
   for (std::int64_t tick = stamp; tick < until; tick += step_ns_) {
@@ -92,31 +91,25 @@ std::optional<typename PlanLedger<V>::Forecast> PlanLedger<V>::forecast(
       if (next < queued && queue[next]->start_ns <= t) {
         const Entry& e = *queue[next++];
         if (e.steps.empty()) {
-          if (mode == Mode::kExecuting) contingency();
+          if (mode == Mode::kExecuting) mode = contingency_mode(vehicle_, q);
         } else if (states_match(q, e.start)) {
           current = &e;
           piece = 0;
           mode = Mode::kExecuting;
         }  // else refused: the vehicle goes on as it was
       }
-      if (mode == Mode::kExecuting && piece == current->steps.size()) contingency();
+      if (mode == Mode::kExecuting && piece == current->steps.size()) {
+        mode = contingency_mode(vehicle_, q);
+      }
       std::int64_t end = tick_end;
       if (next < queued) end = std::min(end, queue[next]->start_ns);
       if (mode == Mode::kExecuting) end = std::min(end, current->end_ns[piece]);
       const double h = static_cast<double>(end - t) / kNsPerS;
-      switch (mode) {
-        case Mode::kExecuting: {
-          const PlanStep& s = current->steps[piece];
-          q = vehicle_.step(q, typename V::Control(s.control[0], s.control[1]), h);
-          break;
-        }
-        case Mode::kBraking:
-          q = vehicle_.brake_step(q, h);
-          if (vehicle_.is_stopped(q)) mode = Mode::kAtRest;
-          break;
-        case Mode::kAtRest:
-          break;
+      typename V::Control held = V::Control::Zero();
+      if (mode == Mode::kExecuting) {
+        held << current->steps[piece].control[0], current->steps[piece].control[1];
       }
+      q = follow(vehicle_, q, mode, held, h);
       t = end;
       if (mode == Mode::kExecuting && t >= current->end_ns[piece]) ++piece;
     }

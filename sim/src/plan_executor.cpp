@@ -201,7 +201,7 @@ void PlanExecutor<V>::begin_contingency(ContingencyCause cause) noexcept {
       ++stats_.ended_by_brake_plan;
       break;
   }
-  mode_ = vehicle_.is_stopped(state_) ? ExecutorMode::kAtRest : ExecutorMode::kBraking;
+  mode_ = contingency_mode(vehicle_, state_);
   if (mode_ == ExecutorMode::kAtRest) control_ = Control::Zero();
 }
 
@@ -260,22 +260,14 @@ void PlanExecutor<V>::integrate(std::int64_t until_ns) noexcept {
     const double h = static_cast<double>(end - now_ns_) / kNsPerS;
     const double x0 = state_x(state_);
     const double y0 = state_y(state_);
-    switch (mode_) {
-      case ExecutorMode::kExecuting: {
-        const PlanStep& piece = slots_[current_].steps[piece_];
-        control_ = Control(piece.control[0], piece.control[1]);
-        state_ = vehicle_.step(state_, control_, h);
-        break;
-      }
-      case ExecutorMode::kBraking:
-        control_ = vehicle_.braking_control(state_);
-        state_ = vehicle_.brake_step(state_, h);
-        if (vehicle_.is_stopped(state_)) mode_ = ExecutorMode::kAtRest;
-        break;
-      case ExecutorMode::kAtRest:
-        control_ = Control::Zero();
-        break;
+    if (mode_ == ExecutorMode::kExecuting) {
+      const PlanStep& piece = slots_[current_].steps[piece_];
+      control_ = Control(piece.control[0], piece.control[1]);
+    } else {
+      control_ =
+          mode_ == ExecutorMode::kBraking ? vehicle_.braking_control(state_) : Control::Zero();
     }
+    state_ = follow(vehicle_, state_, mode_, control_, h);
     stats_.distance_m += std::hypot(state_x(state_) - x0, state_y(state_) - y0);
     now_ns_ = end;
     if (mode_ == ExecutorMode::kExecuting && now_ns_ >= slots_[current_].end_ns[piece_]) {

@@ -21,7 +21,7 @@
 #include <span>
 #include <vector>
 
-#include "grip/planner/planner.hpp"
+#include "grip/planner/plan_following.hpp"
 
 namespace grip::rt {
 

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "grip/common/result.hpp"
+#include "grip/planner/plan_following.hpp"
 #include "grip/planner/planner.hpp"
 #include "grip/vehicles/car.hpp"
 #include "grip/vehicles/dd_acceleration.hpp"
@@ -69,11 +70,9 @@ enum class PlanVerdict : std::uint8_t {
 };
 std::string_view plan_verdict_name(PlanVerdict v) noexcept;
 
-enum class ExecutorMode : std::uint8_t {
-  kAtRest,     // no plan: stopped (initially, and after a contingency completed)
-  kExecuting,  // following a plan (until a tick begins after its last piece ended)
-  kBraking,    // performing the contingency maneuver
-};
+// kAtRest: initially, and after a contingency completed; kExecuting: until a tick begins after
+// the plan's last piece ended; kBraking: the contingency maneuver.
+using ExecutorMode = ControllerMode;
 std::string_view executor_mode_name(ExecutorMode m) noexcept;
 
 struct CollisionEvent {
