@@ -1,10 +1,27 @@
 #include "grip/rt/replanning_cycle.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
+#include "grip/common/enum_names.hpp"
+
 namespace grip::rt {
+
+namespace {
+constexpr std::array<NamedValue<RestartCause>, 5> kRestartCauseNames{{
+    {RestartCause::kNone, "none"},
+    {RestartCause::kVehicleOffPlans, "vehicle-off-plans"},
+    {RestartCause::kNoPlan, "no-plan"},
+    {RestartCause::kRootInCollision, "root-in-collision"},
+    {RestartCause::kRetainRefused, "retain-refused"},
+}};
+}  // namespace
+
+std::string_view restart_cause_name(RestartCause cause) noexcept {
+  return name_in(kRestartCauseNames, cause);
+}
 
 template <VehicleModel V>
 Result<ReplanningCycle<V>> ReplanningCycle<V>::create(const V& vehicle, const OccupancyGrid& grid,
@@ -175,8 +192,13 @@ CycleOutcome ReplanningCycle<V>::run_growing(
                     : next_root.edge != kNoHandle
                         ? planner_.tree().edge_state(next_root.edge, next_root.index)
                         : predicted_state_without_plan();
-    resync_.reset();
     out.restarted = true;
+    out.restart_cause = resync_                       ? RestartCause::kVehicleOffPlans
+                        : next_root.edge == kNoHandle ? RestartCause::kNoPlan
+                        : out.retain_status == RetainStatus::kRootInCollision
+                            ? RestartCause::kRootInCollision
+                            : RestartCause::kRetainRefused;
+    resync_.reset();
     // rho as for a retainment: a restart is no reason to recompute it, and the whole-map
     // wavefront would take the cycle's growth (a vehicle restarted every cycle never moved).
     out.retain_status =

@@ -192,6 +192,36 @@ TEST_F(ReplanningCycleTest, AVehicleRestingWithoutAPlanKeepsGrowingTheSameTree) 
   EXPECT_EQ(cycle->plan_start(), rest);
 }
 
+TEST_F(ReplanningCycleTest, ARestartSaysWhyTheTreeWasNotKept) {
+  // Kept: no cause.
+  for (int i = 0; i < 3; ++i) {
+    const CycleOutcome out = run_cycle();
+    ASSERT_TRUE(out.committed);
+    EXPECT_FALSE(out.restarted);
+    EXPECT_EQ(out.restart_cause, RestartCause::kNone);
+  }
+  // The vehicle will be elsewhere: a fresh tree there.
+  Car::State elsewhere = cycle->next_plan_start();
+  elsewhere[3] = 0.0;
+  cycle->resynchronise(elsewhere);
+  CycleOutcome out = run_cycle();
+  EXPECT_TRUE(out.restarted);
+  EXPECT_EQ(out.restart_cause, RestartCause::kVehicleOffPlans);
+  EXPECT_EQ(restart_cause_name(out.restart_cause), "vehicle-off-plans");
+  EXPECT_EQ(cycle->plan_start(), elsewhere);
+  // A moving vehicle without a plan: nothing in the tree says where it will be.
+  Car::State moving = car.rest_state(scene.start_x_m, scene.start_y_m, 0.0);
+  moving[3] = 1.0;
+  ASSERT_TRUE(
+      cycle->start(moving, GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+  out = cycle->run([this] { return clock.read(); }, clock.now);  // no time to plan
+  ASSERT_FALSE(out.plan_available);
+  out = run_cycle();
+  EXPECT_TRUE(out.restarted);
+  EXPECT_EQ(out.restart_cause, RestartCause::kNoPlan);
+  EXPECT_EQ(restart_cause_name(out.restart_cause), "no-plan");
+}
+
 TEST_F(ReplanningCycleTest, ThePlansEndIsAnnouncedOnceACycleBeforeThePlanIsExtracted) {
   // The announcement comes after growth and the choice, while the previous cycle's plan is
   // still the committed one: a publishing thread wakes before the new plan exists.

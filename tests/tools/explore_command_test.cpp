@@ -69,7 +69,7 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
 }
 
 // The cycle trace: a header and one row per planning cycle, numbered from 0, each row's phases
-// within its compute time and its miss consistent with its lateness.
+// within its compute time, its miss consistent with its lateness and a restart with its cause.
 void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles) {
   std::ifstream in(path);
   std::string line;
@@ -89,15 +89,17 @@ void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles)
                     grow = column("grow_us"), commit = column("commit_us"),
                     compute = column("compute_us"), lateness = column("lateness_us"),
                     missed = column("missed"), restarted = column("restarted"),
-                    committed = column("committed"), status = column("retain_status");
+                    committed = column("committed"), status = column("retain_status"),
+                    cause = column("restart_cause");
   std::uint64_t rows = 0;
   while (std::getline(in, line)) {
     std::vector<double> v;
-    std::string status_name;
+    std::string status_name, cause_name;
     std::stringstream fields(line);
     for (std::string f; std::getline(fields, f, ',');) {
       if (v.size() == status) status_name = f;
-      v.push_back(v.size() == status ? 0.0 : std::stod(f));
+      if (v.size() == cause) cause_name = f;
+      v.push_back(v.size() == status || v.size() == cause ? 0.0 : std::stod(f));
     }
     ASSERT_EQ(v.size(), header.size()) << line;
     // Why the tree could not be kept or started; a committed plan comes from a tree that was.
@@ -111,6 +113,12 @@ void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles)
     if (status_name != "ok") {
       EXPECT_EQ(v[restarted], 1.0) << line;
     }
+    // A restart says why; a kept tree has no cause.
+    EXPECT_TRUE(cause_name == "none" || cause_name == "vehicle-off-plans" ||
+                cause_name == "no-plan" || cause_name == "root-in-collision" ||
+                cause_name == "retain-refused")
+        << line;
+    EXPECT_EQ(v[restarted] == 1.0, cause_name != "none") << line;
     EXPECT_EQ(v[cycle], static_cast<double>(rows)) << line;
     EXPECT_GE(v[wake], 0.0) << line;
     EXPECT_LE(v[prepare] + v[retain] + v[grow] + v[commit], v[compute] + 1.0) << line;

@@ -60,6 +60,13 @@ TEST(StressCommand, AShortRunWritesASaneReportWithoutAllocationsOnThePlanningThr
   EXPECT_FALSE(report.at("kernel").get<std::string>().empty());
   EXPECT_EQ(report.at("load").at("kind"), "none");
   EXPECT_GT(report.at("planner").at("edges_added").get<double>(), 0.0);
+  // Every restart is counted under its cause.
+  std::uint64_t restarts_with_cause = 0;
+  for (const auto& [cause, count] : report.at("planner").at("restarts_by_cause").items()) {
+    EXPECT_NE(cause, "none");
+    restarts_with_cause += count.get<std::uint64_t>();
+  }
+  EXPECT_EQ(restarts_with_cause, report.at("planner").at("restarts").get<std::uint64_t>());
   if (sanitized()) {
     EXPECT_FALSE(report.at("heap_allocations_counted").get<bool>());
     EXPECT_TRUE(report.at("heap_allocations_in_loop").is_null());

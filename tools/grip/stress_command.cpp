@@ -271,6 +271,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   std::uint64_t edges_added = 0, max_tree = 0, max_trajectories = 0, exhausted = 0, solved = 0;
   std::uint64_t retained_sum = 0;
   std::map<std::string, std::uint64_t> refused;  // cycles whose tree could not be kept or started
+  std::map<std::string, std::uint64_t> restarts_by_cause;
   // Estimated arrival at the target (release of the plan + its duration) once a plan reaches
   // it; on a static map retainment should never make it later.
   double first_arrival_s = -1.0;
@@ -307,7 +308,10 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
       skipped += record.skipped ? 1 : 0;
       kept_previous += record.outcome.kept_previous ? 1 : 0;
       no_plan += record.outcome.plan_available ? 0 : 1;
-      restarts += record.outcome.restarted ? 1 : 0;
+      if (record.outcome.restarted) {
+        ++restarts;
+        ++restarts_by_cause[std::string(rt::restart_cause_name(record.outcome.restart_cause))];
+      }
       if (record.outcome.retain_status != RetainStatus::kOk) {
         ++refused[std::string(retain_status_name(record.outcome.retain_status))];
       }
@@ -391,6 +395,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
                        {"cycles_previous_plan_kept", kept_previous},
                        {"cycles_without_plan", no_plan},
                        {"restarts", restarts},
+                       {"restarts_by_cause", restarts_by_cause},
                        {"cycles_refused_by_status", refused},
                        {"cycles_with_plan_to_target", solved},
                        {"first_arrival_s", first_arrival_s >= 0.0 ? nlohmann::json(first_arrival_s)

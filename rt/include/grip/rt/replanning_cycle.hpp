@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string_view>
 
 #include "grip/common/function_ref.hpp"
 #include "grip/memory/fixed_vector.hpp"
@@ -32,10 +33,21 @@ struct CycleConfig {
   std::uint32_t rho_refresh_cycles = 1;
 };
 
+// Why a cycle started a fresh tree instead of keeping the last one.
+enum class RestartCause : std::uint8_t {
+  kNone,             // the tree was kept (or this cycle did not get that far)
+  kVehicleOffPlans,  // resynchronise(): the vehicle will start the next plan elsewhere
+  kNoPlan,           // no committed plan covers T and the vehicle is not resting at the root
+  kRootInCollision,  // the new map puts the chassis at the new root in collision
+  kRetainRefused,    // retain() refused for another reason (retain_status says which)
+};
+std::string_view restart_cause_name(RestartCause cause) noexcept;
+
 // What a cycle did.
 struct CycleOutcome {
-  RetainStatus retain_status = RetainStatus::kOk;
-  bool restarted = false;       // the tree was rebuilt from the predicted state
+  RetainStatus retain_status = RetainStatus::kOk;  // of the retainment, or of the restart
+  bool restarted = false;                          // the tree was rebuilt from the predicted state
+  RestartCause restart_cause = RestartCause::kNone;
   bool committed = false;       // a new plan was committed
   bool kept_previous = false;   // nothing better: the previous plan continues
   bool plan_available = false;  // a plan covers the next cycle (else the contingency runs)
