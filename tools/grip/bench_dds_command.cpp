@@ -5,11 +5,15 @@
 // loopback interface); this process is the vehicle side (state, map, goal) and takes the plans.
 // The latency of a plan is the time from its commit on the planning thread
 // (committed_monotonic_ns, CLOCK_MONOTONIC, shared by processes of one machine) to its take
-// here: the planner's hand-off to its publish thread, serialisation, loopback, delivery.
+// here: the planner's hand-off to its publish thread, serialisation, loopback, delivery. The
+// plans of each round's first second are not measured, as ddsperf's first window is not.
 // ddsperf: `ddsperf pong` and `ddsperf ping R size S`, two processes on the same loopback
 // configuration, at the plans' rate R; ddsperf reports half the round trip, a one-way figure
 // like ours.
-// Percentiles are compared pooled over the whole run. ddsperf prints only per-second summaries;
+// The two alternate in rounds (ours, then ddsperf, --rounds times), each side measured for a
+// share of --duration per round, so that both meet the same states of a shared machine: a
+// VM stall of a few seconds lands on one side of one round, not on one side of the whole run.
+// Percentiles are compared pooled over all rounds. ddsperf prints only per-second summaries;
 // the k-th largest of its per-second maxima (k = 1% of its round trips) is a lower bound of its
 // pooled p99, since those maxima are k of its samples. Medians of per-second p99s would hide
 // the VM's occasional stalls on ddsperf's side only, while ours are pooled.
@@ -46,7 +50,8 @@ namespace grip::tools {
 namespace {
 
 struct BenchDdsOptions {
-  double duration_s = 30.0;
+  double duration_s = 30.0;  // of each side, over all rounds
+  unsigned rounds = 4;
   unsigned domain = 90;  // ddsperf uses domain + 1
   std::string json;
   std::string planner_report;  // the planner child's own report (allocations, misses)
@@ -63,16 +68,30 @@ nlohmann::json summary_us(const rt::LatencyHistogram& h) {
 
 struct PlannerSide {
   rt::LatencyHistogram latency;
-  nlohmann::json report;  // the planner process's own (hand-off and write times, misses)
-  double mean_plan_bytes = 0.0;
+  // The planner processes' own (hand-off and write times, misses, allocations), one per round.
+  std::vector<nlohmann::json> reports;
+  double plan_bytes = 0.0;
   std::uint64_t plans = 0;
   double distance_m = 0.0;  // driven by the vehicle side
   std::uint64_t goals_reached = 0;
   std::uint64_t refused = 0;  // plans not starting where the vehicle was
+  double mean_plan_bytes() const {
+    return plans == 0 ? 0.0 : plan_bytes / static_cast<double>(plans);
+  }
+  void add(const PlannerSide& round) {
+    latency.merge(round.latency);
+    reports.insert(reports.end(), round.reports.begin(), round.reports.end());
+    plan_bytes += round.plan_bytes;
+    plans += round.plans;
+    distance_m += round.distance_m;
+    goals_reached += round.goals_reached;
+    refused += round.refused;
+  }
 };
 
-// The vehicle side of the planner run: a dd-vel robot starting at rest at the start of "rooms".
-Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
+// The vehicle side of one round of the planner run, `seconds` long: a dd-vel robot starting at
+// rest at the start of "rooms".
+Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
   Scene scene = make_scene("rooms").value();
   rt::dds::VehicleLinkConfig config;
   config.domain = o.domain;
@@ -88,13 +107,11 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
                                 "--domain",
                                 std::to_string(o.domain),
                                 "--duration",
-                                std::to_string(o.duration_s),
+                                std::to_string(seconds),
                                 "--startup-timeout",
                                 "30"};
   const std::string report_path =
-      !o.planner_report.empty()
-          ? o.planner_report
-          : "/tmp/grip-bench-dds-planner-" + std::to_string(getpid()) + ".json";
+      "/tmp/grip-bench-dds-planner-" + std::to_string(getpid()) + ".json";
   args.push_back("--report");
   args.push_back(report_path);
   auto planner = Child::spawn(std::move(args), {}, "/dev/null");
@@ -129,11 +146,12 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
   };
   if (Status s = publish_goal(); !s) return s.error();
   PlannerSide out;
-  double bytes = 0.0;
   std::uint64_t sequence = 0;
-  const auto until =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(o.duration_s + 35.0);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(seconds + 35);
   bool seen_plans = false;
+  // Plans committed in the round's first second are not measured: like ddsperf's first window,
+  // they meet a link still settling (the first samples of a reliable writer, cold caches).
+  std::int64_t measure_from_ns = 0;
   while (std::chrono::steady_clock::now() < until) {
     const std::int64_t now = platform::now_ns();
     if (now >= executor->now_ns() + executor->step_ns()) {
@@ -156,10 +174,11 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
       }
     }
     if (const grip_msg_Plan* plan = (*link)->take_plan()) {
-      out.latency.record(platform::now_ns() -
-                         static_cast<std::int64_t>(plan->committed_monotonic_ns));
-      bytes += static_cast<double>(sizeof(grip_msg_Plan) - sizeof(plan->steps) + 4 +
-                                   plan->steps._length * sizeof(grip_msg_PlanStep));
+      const auto committed = static_cast<std::int64_t>(plan->committed_monotonic_ns);
+      if (!seen_plans) measure_from_ns = committed + 1'000'000'000;
+      if (committed >= measure_from_ns) out.latency.record(platform::now_ns() - committed);
+      out.plan_bytes += static_cast<double>(sizeof(grip_msg_Plan) - sizeof(plan->steps) + 4 +
+                                            plan->steps._length * sizeof(grip_msg_PlanStep));
       ++out.plans;
       static_cast<void>(sim::submit_wire_plan(*executor, *plan, steps));
       seen_plans = true;
@@ -176,17 +195,19 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o) {
   if (const int status = planner->wait(); status != 0) {
     return Error{ErrorCode::kIo, "the planner process ended with status " + std::to_string(status)};
   }
-  if (out.plans == 0) return Error{ErrorCode::kIo, "no plan arrived from the planner"};
+  if (out.latency.count() == 0) {
+    return Error{ErrorCode::kIo, "no plan arrived from the planner after its first second"};
+  }
   {
     std::ifstream in(report_path);
-    out.report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-    if (!out.report.is_object()) {
+    nlohmann::json report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    if (!report.is_object()) {
       return Error{ErrorCode::kIo,
                    "the planner process wrote no readable report to " + report_path};
     }
+    out.reports.push_back(std::move(report));
   }
-  if (o.planner_report.empty()) std::remove(report_path.c_str());
-  out.mean_plan_bytes = bytes / static_cast<double>(out.plans);
+  std::remove(report_path.c_str());
   return out;
 }
 
@@ -208,6 +229,13 @@ struct DdsperfSide {
     std::sort(maxima.begin(), maxima.end(), std::greater<>());
     return maxima.empty() ? 0.0 : maxima[pooled_p99_rank() - 1];
   }
+  void add(const DdsperfSide& round) {
+    for (auto [to, from] : {std::pair{&p50_us, &round.p50_us}, std::pair{&p90_us, &round.p90_us},
+                            std::pair{&p99_us, &round.p99_us}, std::pair{&max_us, &round.max_us},
+                            std::pair{&round_trips, &round.round_trips}}) {
+      to->insert(to->end(), from->begin(), from->end());
+    }
+  }
 };
 
 double median(std::vector<double> v) {
@@ -216,8 +244,9 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-Result<DdsperfSide> measure_ddsperf(const BenchDdsOptions& o, std::size_t payload_bytes,
-                                    unsigned rate_hz) {
+// One round of ddsperf, `seconds` long.
+Result<DdsperfSide> measure_ddsperf(const BenchDdsOptions& o, int seconds,
+                                    std::size_t payload_bytes, unsigned rate_hz) {
   const std::string config_path = "/tmp/grip-bench-dds-" + std::to_string(getpid()) + ".xml";
   {
     std::ofstream config(config_path);
@@ -226,13 +255,13 @@ Result<DdsperfSide> measure_ddsperf(const BenchDdsOptions& o, std::size_t payloa
   }
   const std::vector<std::string> env{"CYCLONEDDS_URI=file://" + config_path};
   const std::string domain = std::to_string(o.domain + 1);
-  const std::string duration = std::to_string(static_cast<int>(o.duration_s) + 2);
+  const std::string duration = std::to_string(seconds + 2);
   const std::string ping_out = config_path + ".ping.txt";
   auto pong =
       Child::spawn({"ddsperf", "-i", domain, "-D", duration, "pong", "waitset"}, env, "/dev/null");
   if (!pong) return pong.error();
   auto ping = Child::spawn(
-      {"ddsperf", "-i", domain, "-D", std::to_string(static_cast<int>(o.duration_s)), "ping",
+      {"ddsperf", "-i", domain, "-D", std::to_string(seconds), "ping",
        std::to_string(rate_hz) + "Hz", "size", std::to_string(payload_bytes), "waitset"},
       env, ping_out);
   if (!ping) return ping.error();
@@ -268,82 +297,124 @@ Result<DdsperfSide> measure_ddsperf(const BenchDdsOptions& o, std::size_t payloa
 }
 
 int run_bench_dds(const BenchDdsOptions& o) {
-  std::cerr << "grip bench dds: planner -> subscriber for " << o.duration_s << " s ...\n";
-  auto ours = measure_planner(o);
-  if (!ours) {
-    std::cerr << "grip bench dds: " << ours.error().message << "\n";
-    return 1;
+  // ddsperf counts whole seconds, and drops its first (discovery) second of each round.
+  const int seconds = static_cast<int>(std::lround(o.duration_s / o.rounds));
+  if (seconds < 3) {
+    std::cerr << "grip bench dds: --duration " << o.duration_s << " over --rounds " << o.rounds
+              << " leaves " << seconds << " s per round and side; at least 3 are needed\n";
+    return 2;
   }
-  const auto payload = static_cast<std::size_t>(ours->mean_plan_bytes);
-  // The plans' own rate, so that both sides wake as often.
-  const auto rate_hz = static_cast<unsigned>(
-      std::max(1.0, std::round(static_cast<double>(ours->plans) / o.duration_s)));
-  std::cerr << "grip bench dds: ddsperf ping-pong, " << payload << " bytes at " << rate_hz
-            << " Hz, for " << o.duration_s << " s ...\n";
-  auto ddsperf = measure_ddsperf(o, payload, rate_hz);
-  if (!ddsperf) {
-    std::cerr << "grip bench dds: " << ddsperf.error().message << "\n";
-    return 1;
-  }
+  PlannerSide ours;
+  DdsperfSide theirs;
+  std::size_t payload = 0;
+  unsigned rate_hz = 0;
   const auto us = [](std::int64_t ns) { return static_cast<double>(ns) / 1e3; };
-  const double our_p99 = us(ours->latency.percentile(0.99));
-  const double their_p99 = ddsperf->pooled_p99_at_least_us();
+  // Where the planner's side spends it, in the planner process's report of one round.
+  const auto part = [](const nlohmann::json& report, const char* key) {
+    const nlohmann::json& p = report.value(key, nlohmann::json());
+    return p.is_object() ? p : nlohmann::json{{"p50", 0.0}, {"p99", 0.0}, {"max", 0.0}};
+  };
+  for (unsigned round = 1; round <= o.rounds; ++round) {
+    std::cerr << "grip bench dds: round " << round << " of " << o.rounds
+              << ": planner -> subscriber for " << seconds << " s ...\n";
+    auto planner = measure_planner(o, seconds);
+    if (!planner) {
+      std::cerr << "grip bench dds: " << planner.error().message << "\n";
+      return 1;
+    }
+    if (round == 1) {
+      // The plans' own size and rate, so that both sides carry as much and wake as often.
+      payload = static_cast<std::size_t>(planner->mean_plan_bytes());
+      rate_hz = static_cast<unsigned>(
+          std::max(1.0, std::round(static_cast<double>(planner->plans) / seconds)));
+    }
+    std::cerr << "grip bench dds: round " << round << " of " << o.rounds << ": ddsperf ping-pong, "
+              << payload << " bytes at " << rate_hz << " Hz, for " << seconds << " s ...\n";
+    auto ddsperf = measure_ddsperf(o, seconds, payload, rate_hz);
+    if (!ddsperf) {
+      std::cerr << "grip bench dds: " << ddsperf.error().message << "\n";
+      return 1;
+    }
+    const nlohmann::json& report = planner->reports.front();
+    std::printf(
+        "round %u: plan delivery p99 %.1f us (%llu plans measured; commit -> publish thread p99 "
+        "%.1f us, "
+        "dds_write p99 %.1f us); ddsperf p99 at least %.1f us\n",
+        round, us(planner->latency.percentile(0.99)),
+        static_cast<unsigned long long>(planner->latency.count()),
+        part(report, "plan_handoff_us").value("p99", 0.0),
+        part(report, "plan_write_us").value("p99", 0.0), ddsperf->pooled_p99_at_least_us());
+    ours.add(*planner);
+    theirs.add(*ddsperf);
+  }
+
+  const double our_p99 = us(ours.latency.percentile(0.99));
+  const double their_p99 = theirs.pooled_p99_at_least_us();
   std::printf(
-      "plan delivery, planner -> subscriber (%llu plans, mean %zu bytes), pooled:\n"
+      "plan delivery, planner -> subscriber (%llu plans measured, mean %.0f bytes), pooled:\n"
       "  p50 %.1f us, p90 %.1f us, p99 %.1f us, max %.1f us\n"
       "ddsperf ping-pong one-way (%llu round trips, %zu bytes, %u Hz):\n"
       "  medians of its per-second windows: p50 %.1f us, p90 %.1f us, p99 %.1f us\n"
       "  pooled p99 at least %.1f us (rank %zu of its per-second maxima, largest first); max %.1f "
       "us\n"
-      "p99 ratio planner / ddsperf, pooled: at most %.2f (target <= 1.5)\n",
-      static_cast<unsigned long long>(ours->plans), payload, us(ours->latency.percentile(0.5)),
-      us(ours->latency.percentile(0.9)), our_p99, us(ours->latency.max()),
-      static_cast<unsigned long long>(ddsperf->count()), payload, rate_hz, median(ddsperf->p50_us),
-      median(ddsperf->p90_us), median(ddsperf->p99_us), their_p99, ddsperf->pooled_p99_rank(),
-      *std::max_element(ddsperf->max_us.begin(), ddsperf->max_us.end()), our_p99 / their_p99);
-  // Where the planner's side spends it, in the planner process.
-  const auto part = [&](const char* key) {
-    const nlohmann::json& p = ours->report.value(key, nlohmann::json());
-    return p.is_object() ? p : nlohmann::json{{"p50", 0.0}, {"p99", 0.0}, {"max", 0.0}};
-  };
-  const nlohmann::json handoff = part("plan_handoff_us");
-  const nlohmann::json write = part("plan_write_us");
-  std::printf(
-      "of which, in the planner: commit -> publish thread p50 %.1f us, p99 %.1f us; "
-      "dds_write p50 %.1f us, p99 %.1f us\n",
-      handoff.value("p50", 0.0), handoff.value("p99", 0.0), write.value("p50", 0.0),
-      write.value("p99", 0.0));
+      "p99 ratio planner / ddsperf, pooled over %u rounds: at most %.2f (target <= 1.5)\n",
+      static_cast<unsigned long long>(ours.latency.count()), ours.mean_plan_bytes(),
+      us(ours.latency.percentile(0.5)), us(ours.latency.percentile(0.9)), our_p99,
+      us(ours.latency.max()), static_cast<unsigned long long>(theirs.count()), payload, rate_hz,
+      median(theirs.p50_us), median(theirs.p90_us), median(theirs.p99_us), their_p99,
+      theirs.pooled_p99_rank(), *std::max_element(theirs.max_us.begin(), theirs.max_us.end()),
+      o.rounds, our_p99 / their_p99);
   // What the plans were for: a vehicle that follows them (the planner replans from where they
   // put it, not from scratch).
-  const std::uint64_t off_plans = ours->report.value("resyncs", std::uint64_t{0});
+  std::uint64_t off_plans = 0;
+  for (const nlohmann::json& report : ours.reports) {
+    off_plans += report.value("resyncs", std::uint64_t{0});
+  }
   std::printf(
       "the vehicle followed them: %.1f m driven, %llu goals reached, %llu plans refused; the "
       "planner found it off its plans %llu times\n",
-      ours->distance_m, static_cast<unsigned long long>(ours->goals_reached),
-      static_cast<unsigned long long>(ours->refused), static_cast<unsigned long long>(off_plans));
+      ours.distance_m, static_cast<unsigned long long>(ours.goals_reached),
+      static_cast<unsigned long long>(ours.refused), static_cast<unsigned long long>(off_plans));
+  if (!o.planner_report.empty()) {
+    std::ofstream out(o.planner_report);
+    out << nlohmann::json(ours.reports).dump(2) << "\n";
+    if (!out) {
+      std::cerr << "grip bench dds: cannot write '" << o.planner_report << "'\n";
+      return 1;
+    }
+  }
   if (!o.json.empty()) {
     nlohmann::json j;
-    j["planner"] = summary_us(ours->latency);
-    j["planner"]["mean_plan_bytes"] = ours->mean_plan_bytes;
-    j["planner"]["handoff_us"] = handoff;
-    j["planner"]["write_us"] = write;
-    j["vehicle"] = {{"distance_m", ours->distance_m},
-                    {"goals_reached", ours->goals_reached},
-                    {"plans_refused", ours->refused},
+    j["planner"] = summary_us(ours.latency);
+    j["planner"]["mean_plan_bytes"] = ours.mean_plan_bytes();
+    nlohmann::json rounds = nlohmann::json::array();
+    for (const nlohmann::json& report : ours.reports) {
+      rounds.push_back({{"handoff_us", part(report, "plan_handoff_us")},
+                        {"write_us", part(report, "plan_write_us")}});
+    }
+    j["planner"]["rounds"] = rounds;
+    j["vehicle"] = {{"distance_m", ours.distance_m},
+                    {"goals_reached", ours.goals_reached},
+                    {"plans_refused", ours.refused},
                     {"planner_found_it_off_its_plans", off_plans}};
     j["ddsperf"] = {{"payload_bytes", payload},
-                    {"round_trips", ddsperf->count()},
-                    {"p50_us_median", median(ddsperf->p50_us)},
-                    {"p90_us_median", median(ddsperf->p90_us)},
+                    {"round_trips", theirs.count()},
+                    {"p50_us_median", median(theirs.p50_us)},
+                    {"p90_us_median", median(theirs.p90_us)},
                     {"rate_hz", rate_hz},
-                    {"p99_us_median", median(ddsperf->p99_us)},
+                    {"p99_us_median", median(theirs.p99_us)},
                     {"p99_us_pooled_at_least", their_p99},
-                    {"p99_us_per_second", ddsperf->p99_us},
-                    {"max_us_per_second", ddsperf->max_us}};
+                    {"p99_us_per_second", theirs.p99_us},
+                    {"max_us_per_second", theirs.max_us}};
     j["p99_ratio"] = our_p99 / their_p99;
     j["duration_s"] = o.duration_s;
+    j["rounds"] = o.rounds;
     std::ofstream out(o.json);
     out << j.dump(2) << "\n";
+    if (!out) {
+      std::cerr << "grip bench dds: cannot write '" << o.json << "'\n";
+      return 1;
+    }
   }
   return 0;
 }
@@ -354,13 +425,19 @@ void register_bench_dds_command(CLI::App& bench) {
   auto o = std::make_shared<BenchDdsOptions>();
   CLI::App* cmd = bench.add_subcommand(
       "dds", "Plan delivery latency planner -> subscriber on loopback, against ddsperf ping-pong");
-  cmd->add_option("--duration", o->duration_s, "Seconds of each measurement")
-      ->capture_default_str();
+  cmd->add_option("--duration", o->duration_s,
+                  "Seconds of each side's measurement, over all rounds")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--rounds", o->rounds,
+                  "Rounds of the two sides in turn (ours, then ddsperf), each duration/rounds long")
+      ->capture_default_str()
+      ->check(CLI::Range(1U, 100U));
   cmd->add_option("--domain", o->domain, "DDS domain of the planner run (ddsperf uses the next)")
       ->capture_default_str();
   cmd->add_option("--json", o->json, "Write the figures as JSON here");
   cmd->add_option("--planner-report", o->planner_report,
-                  "Have the planner process write its report here (allocations, misses)");
+                  "Write the planner process's reports here, one per round (allocations, misses)");
   cmd->callback([o]() {
     if (const int rc = run_bench_dds(*o); rc != 0) throw CLI::RuntimeError(rc);
   });
