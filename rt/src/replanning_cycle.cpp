@@ -192,7 +192,6 @@ CycleOutcome ReplanningCycle<V>::run_growing(
                     : next_root.edge != kNoHandle
                         ? planner_.tree().edge_state(next_root.edge, next_root.index)
                         : predicted_state_without_plan();
-    out.restarted = true;
     out.restart_cause = resync_                       ? RestartCause::kVehicleOffPlans
                         : next_root.edge == kNoHandle ? RestartCause::kNoPlan
                         : out.retain_status == RetainStatus::kRootInCollision

@@ -113,7 +113,7 @@ TEST_F(ReplanningCycleTest, RhoTowardAnUnchangedTargetIsRecomputedEveryRefreshCy
     EXPECT_NE(scene.grid.revision(), before);
     const CycleOutcome out = run_cycle();
     EXPECT_EQ(out.retain_status, RetainStatus::kOk);
-    EXPECT_FALSE(out.restarted);
+    EXPECT_FALSE(out.restarted());
   };
   (void)run_cycle();  // the first cycle starts the tree (a restart computes rho)
   ASSERT_EQ(rho.source_revision(), scene.grid.revision());
@@ -180,7 +180,7 @@ TEST_F(ReplanningCycleTest, AVehicleRestingWithoutAPlanKeepsGrowingTheSameTree) 
     const CycleOutcome out = cycle->run_for_edges(racing, 200, root);
     EXPECT_FALSE(out.committed);
     EXPECT_FALSE(out.plan_available);
-    EXPECT_FALSE(out.restarted) << "cycle " << i;
+    EXPECT_FALSE(out.restarted()) << "cycle " << i;
     EXPECT_EQ(out.edges_retained, edges) << "cycle " << i;
     EXPECT_GT(out.tree_edges, edges);
     edges = out.tree_edges;
@@ -197,7 +197,7 @@ TEST_F(ReplanningCycleTest, ARestartSaysWhyTheTreeWasNotKept) {
   for (int i = 0; i < 3; ++i) {
     const CycleOutcome out = run_cycle();
     ASSERT_TRUE(out.committed);
-    EXPECT_FALSE(out.restarted);
+    EXPECT_FALSE(out.restarted());
     EXPECT_EQ(out.restart_cause, RestartCause::kNone);
   }
   // The vehicle will be elsewhere: a fresh tree there.
@@ -205,7 +205,7 @@ TEST_F(ReplanningCycleTest, ARestartSaysWhyTheTreeWasNotKept) {
   elsewhere[3] = 0.0;
   cycle->resynchronise(elsewhere);
   CycleOutcome out = run_cycle();
-  EXPECT_TRUE(out.restarted);
+  EXPECT_TRUE(out.restarted());
   EXPECT_EQ(out.restart_cause, RestartCause::kVehicleOffPlans);
   EXPECT_EQ(restart_cause_name(out.restart_cause), "vehicle-off-plans");
   EXPECT_EQ(cycle->plan_start(), elsewhere);
@@ -217,7 +217,7 @@ TEST_F(ReplanningCycleTest, ARestartSaysWhyTheTreeWasNotKept) {
   out = cycle->run([this] { return clock.read(); }, clock.now);  // no time to plan
   ASSERT_FALSE(out.plan_available);
   out = run_cycle();
-  EXPECT_TRUE(out.restarted);
+  EXPECT_TRUE(out.restarted());
   EXPECT_EQ(out.restart_cause, RestartCause::kNoPlan);
   EXPECT_EQ(restart_cause_name(out.restart_cause), "no-plan");
 }
@@ -286,7 +286,7 @@ TEST_F(ReplanningCycleTest, WithNoTimeToPlanThePreviousPlanContinues) {
   EXPECT_EQ(out.edges_added, 0U);
   EXPECT_TRUE(out.plan_available);
   EXPECT_TRUE(out.kept_previous || out.committed);
-  EXPECT_FALSE(out.restarted);
+  EXPECT_FALSE(out.restarted());
 }
 
 TEST_F(ReplanningCycleTest, EveryCycleEitherCommitsACollisionFreePlanOrBrakesSafely) {

@@ -41,7 +41,7 @@ void CycleTrace::write(const rt::CycleRecord& r) {
                static_cast<unsigned long long>(r.cycle),
                static_cast<double>(r.release_ns - first_release_ns_) * 1e-6, us(r.wake_latency_ns),
                us(o.prepare_ns), us(o.retain_ns), us(o.grow_ns), us(o.commit_ns), us(r.compute_ns),
-               us(r.lateness_ns), r.missed ? 1 : 0, r.skipped ? 1 : 0, o.restarted ? 1 : 0,
+               us(r.lateness_ns), r.missed ? 1 : 0, r.skipped ? 1 : 0, o.restarted() ? 1 : 0,
                o.committed ? 1 : 0, o.kept_previous ? 1 : 0, o.plan_available ? 1 : 0,
                o.pool_exhausted ? 1 : 0, static_cast<unsigned long long>(o.edges_added),
                o.edges_retained, o.tree_edges, o.plan_duration_s,

@@ -308,7 +308,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
       skipped += record.skipped ? 1 : 0;
       kept_previous += record.outcome.kept_previous ? 1 : 0;
       no_plan += record.outcome.plan_available ? 0 : 1;
-      if (record.outcome.restarted) {
+      if (record.outcome.restarted()) {
         ++restarts;
         ++restarts_by_cause[std::string(rt::restart_cause_name(record.outcome.restart_cause))];
       }

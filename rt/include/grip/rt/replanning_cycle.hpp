@@ -46,7 +46,6 @@ std::string_view restart_cause_name(RestartCause cause) noexcept;
 // What a cycle did.
 struct CycleOutcome {
   RetainStatus retain_status = RetainStatus::kOk;  // of the retainment, or of the restart
-  bool restarted = false;                          // the tree was rebuilt from the predicted state
   RestartCause restart_cause = RestartCause::kNone;
   bool committed = false;       // a new plan was committed
   bool kept_previous = false;   // nothing better: the previous plan continues
@@ -64,6 +63,9 @@ struct CycleOutcome {
   // The caller's work before the cycle (map updates, the vehicle's state, the choice of a
   // target), set by the caller: a cycle trace then accounts for the whole cycle.
   std::int64_t prepare_ns = 0;
+
+  // The tree was rebuilt from the predicted state.
+  bool restarted() const noexcept { return restart_cause != RestartCause::kNone; }
 };
 
 template <VehicleModel V>
