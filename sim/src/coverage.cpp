@@ -47,4 +47,21 @@ double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>&
                            : static_cast<double>(sensed) / static_cast<double>(reachable.size());
 }
 
+Result<UnsensedDistance> UnsensedDistance::create(const OccupancyGrid& truth,
+                                                  std::vector<std::uint32_t> reachable) {
+  auto field = DistanceField::create(truth.width(), truth.height(), truth.resolution());
+  if (!field) return field.error();
+  return UnsensedDistance(truth, std::move(reachable), std::move(field).value());
+}
+
+double UnsensedDistance::from(const OccupancyGrid& known, double x_m, double y_m) {
+  unsensed_.clear();
+  for (const std::uint32_t c : reachable_) {
+    if (known.at(c) == Cell::kUnknown) unsensed_.push_back(c);
+  }
+  if (unsensed_.empty()) return std::numeric_limits<double>::infinity();
+  field_.compute(*truth_, unsensed_);
+  return field_.distance_m(x_m, y_m);
+}
+
 }  // namespace grip::sim

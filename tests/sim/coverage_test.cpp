@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace grip::sim {
 namespace {
@@ -94,6 +96,42 @@ TEST(Coverage, IsTheSensedFractionOfTheReachableCells) {
   known.set(2, 1, Cell::kObstacle);  // sensed is sensed, whatever it holds
   EXPECT_DOUBLE_EQ(coverage_of(known, cells), 0.5);
   EXPECT_DOUBLE_EQ(coverage_of(known, {}), 1.0);
+}
+
+// The way to unsensed ground, through the free space: a vehicle on its way to the far end of
+// a corridor gets nearer while it senses nothing new.
+TEST(UnsensedDistance, IsTheWayThroughFreeSpaceToTheNearestReachableCellNotSensed) {
+  const OccupancyGrid truth = two_rooms(1.0);
+  const auto reachable = reachable_free_cells(truth, 1.0, 1.0, kChassis).value();
+  auto to_unsensed = UnsensedDistance::create(truth, reachable).value();
+  // Everything sensed but the right room beyond x = 6 m.
+  OccupancyGrid known = truth;
+  known.fill_rect(6.0, 0.0, 8.2, 4.0, Cell::kUnknown);
+  // From the left room's centre line (y = 2.45 m, through the gap at 2.0-3.0 m): straight east.
+  EXPECT_NEAR(to_unsensed.from(known, 1.05, 2.45), 5.0, 0.11);
+  EXPECT_NEAR(to_unsensed.from(known, 3.05, 2.45), 3.0, 0.11);
+  // From a corner of the left room the way bends through the gap (8-connected steps, as the
+  // planner's rho: 3.7 m east and 1.7 m north to the gap's first cell, then 2 m east).
+  const double from_corner = to_unsensed.from(known, 0.35, 0.35);
+  EXPECT_GT(from_corner, 6.0 - 0.35);
+  EXPECT_NEAR(from_corner, (3.7 - 1.7) + 1.7 * std::sqrt(2.0) + 2.0, 0.02);
+  // Standing on unsensed ground: nothing to go.
+  EXPECT_NEAR(to_unsensed.from(known, 7.05, 2.05), 0.0, 1e-9);
+}
+
+TEST(UnsensedDistance, IsInfiniteWhenEverythingReachableIsSensedOrTheWayIsClosed) {
+  const OccupancyGrid truth = two_rooms(0.3);  // the right room is out of reach
+  const auto reachable = reachable_free_cells(truth, 1.0, 1.0, kChassis).value();
+  auto to_unsensed = UnsensedDistance::create(truth, reachable).value();
+  // Unsensed cells only where the vehicle cannot go: nothing reachable is left.
+  OccupancyGrid known = truth;
+  known.fill_rect(5.0, 0.0, 8.2, 4.0, Cell::kUnknown);
+  EXPECT_EQ(to_unsensed.from(known, 1.05, 1.05), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(to_unsensed.from(truth, 1.05, 1.05), std::numeric_limits<double>::infinity());
+  // Outside the map.
+  known.fill_rect(0.0, 0.0, 1.0, 1.0, Cell::kUnknown);
+  EXPECT_EQ(to_unsensed.from(known, -5.0, 1.0), std::numeric_limits<double>::infinity());
+  EXPECT_LT(to_unsensed.from(known, 2.05, 2.05), 2.0);
 }
 
 }  // namespace

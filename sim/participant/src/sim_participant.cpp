@@ -106,7 +106,17 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     ++report.plans_received;
   };
   double best_coverage = coverage_of(sensed, *reachable);
-  double coverage_gained_at = 0.0;
+  // Progress: coverage gained, or, while none is, the way to unsensed ground shortened by a
+  // metre (checked once a simulated second after 10 s without coverage). A vehicle driving to
+  // the last frontier of a maze senses nothing new for minutes and is not stuck; one circling
+  // short of a frontier it cannot reach gets no nearer.
+  auto to_unsensed = UnsensedDistance::create(truth, *reachable);
+  if (!to_unsensed) return to_unsensed.error();
+  constexpr double kNearerM = 1.0;
+  constexpr double kLookAfterS = 10.0;
+  double progress_at = 0.0;
+  double nearest_unsensed_m = std::numeric_limits<double>::infinity();
+  const auto ticks_per_second = static_cast<std::uint64_t>(std::max(1L, std::lround(1.0 / dt)));
   bool planner_seen = false;
   bool planner_alive = false;
   std::optional<grip_msg_PlannerStatus> status;
@@ -124,7 +134,16 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       const double coverage = coverage_of(sensed, *reachable);
       if (coverage > best_coverage + 1e-9) {
         best_coverage = coverage;
-        coverage_gained_at = t_sim();
+        progress_at = t_sim();
+        nearest_unsensed_m = std::numeric_limits<double>::infinity();
+      }
+    }
+    if (tick % ticks_per_second == 0 && t_sim() - progress_at >= kLookAfterS) {
+      const double d = to_unsensed->from(sensed, state_x(q), state_y(q));
+      if (d < nearest_unsensed_m - kNearerM) {
+        // The first look sets the mark; only getting nearer than it counts.
+        if (nearest_unsensed_m < std::numeric_limits<double>::infinity()) progress_at = t_sim();
+        nearest_unsensed_m = d;
       }
     }
   };
@@ -166,10 +185,12 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       report.result = "complete";
     } else if (t_sim() >= config.max_sim_time_s) {
       report.result = "timeout";
-    } else if (t_sim() - coverage_gained_at >= config.stuck_after_s) {
+    } else if (t_sim() - progress_at >= config.stuck_after_s) {
       report.result = "stuck";
-      char reason[64];
-      std::snprintf(reason, sizeof reason, "no coverage gained for %.0f s", config.stuck_after_s);
+      char reason[96];
+      std::snprintf(reason, sizeof reason,
+                    "no coverage gained and no nearer to unsensed ground for %.0f s",
+                    config.stuck_after_s);
       report.reason = reason;
     }
     return report.result != "error";

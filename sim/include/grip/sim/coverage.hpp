@@ -3,9 +3,11 @@
 // from its start.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "grip/common/result.hpp"
+#include "grip/world/distance_field.hpp"
 #include "grip/world/footprint.hpp"
 #include "grip/world/occupancy_grid.hpp"
 
@@ -22,5 +24,30 @@ Result<std::vector<std::uint32_t>> reachable_free_cells(const OccupancyGrid& tru
 
 // The fraction of `reachable` that `known` has sensed (not unknown); 1 when it is empty.
 double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>& reachable);
+
+// How far a point is, along the free cells of `truth` (8-connected, as the planner's rho), from
+// the nearest reachable cell not sensed yet: what a vehicle on its way to unexplored ground
+// shortens while it senses nothing new (the last frontier of a maze can be minutes away).
+// Memory is taken by create().
+class UnsensedDistance {
+ public:
+  // `truth` must outlive the object. Errors as for DistanceField::create.
+  static Result<UnsensedDistance> create(const OccupancyGrid& truth,
+                                         std::vector<std::uint32_t> reachable);
+  // [m] +infinity when every reachable cell is sensed, or none is reachable from (x_m, y_m).
+  // One wavefront over the map: O(cells).
+  double from(const OccupancyGrid& known, double x_m, double y_m);
+
+ private:
+  UnsensedDistance(const OccupancyGrid& truth, std::vector<std::uint32_t> reachable,
+                   DistanceField field)
+      : truth_(&truth), reachable_(std::move(reachable)), field_(std::move(field)) {
+    unsensed_.reserve(reachable_.size());
+  }
+  const OccupancyGrid* truth_;
+  std::vector<std::uint32_t> reachable_;
+  std::vector<std::uint32_t> unsensed_;
+  DistanceField field_;
+};
 
 }  // namespace grip::sim

@@ -12,7 +12,8 @@
 // fixed number of edges per cycle), so a seed reproduces a run exactly, at the speed the
 // machine allows. It ends when the planner reports that no
 // reachable frontier remains (complete; stuck when it gave some up), at max_sim_time_s (timeout),
-// when coverage has not grown for stuck_after_s of simulated time (stuck), or when stopped.
+// when for stuck_after_s of simulated time coverage has not grown and the vehicle has got no
+// nearer to unsensed ground (stuck), or when stopped.
 
 #include <array>
 #include <atomic>
@@ -46,8 +47,9 @@ struct SimRunConfig {
   double cycle_s = 0.05;         // the planner's T, for the QoS deadlines
   double sensor_radius_m = 0.0;  // 0: a tenth of the map's larger side
   double max_sim_time_s = 600.0;
-  // No coverage gained for this long: stuck. Long enough for a slow vehicle to cross a maze to
-  // the last frontier; a planner that makes no progress gives its target up sooner (60 s).
+  // No coverage gained and no metre nearer to unsensed ground (through the free space, by the
+  // ground truth) for this long: stuck. A vehicle crossing a maze to its last frontier keeps
+  // getting nearer; a planner that makes no progress gives its target up sooner (60 s).
   double stuck_after_s = 300.0;
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
   std::chrono::nanoseconds planner_wait{std::chrono::seconds(30)};  // for the first plan
