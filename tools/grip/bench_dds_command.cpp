@@ -54,7 +54,7 @@ struct BenchDdsOptions {
   unsigned rounds = 4;
   unsigned domain = 90;  // ddsperf uses domain + 1
   std::string json;
-  std::string planner_report;  // the planner child's own report (allocations, misses)
+  std::string planner_report;  // the planner processes' reports, one per round (a JSON array)
 };
 
 nlohmann::json summary_us(const rt::LatencyHistogram& h) {
