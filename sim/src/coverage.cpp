@@ -48,15 +48,15 @@ double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>&
 }
 
 Result<UnsensedDistance> UnsensedDistance::create(const OccupancyGrid& truth,
-                                                  std::vector<std::uint32_t> reachable) {
+                                                  const std::vector<std::uint32_t>& reachable) {
   auto field = DistanceField::create(truth.width(), truth.height(), truth.resolution());
   if (!field) return field.error();
-  return UnsensedDistance(truth, std::move(reachable), std::move(field).value());
+  return UnsensedDistance(truth, reachable, std::move(field).value());
 }
 
 double UnsensedDistance::from(const OccupancyGrid& known, double x_m, double y_m) {
   unsensed_.clear();
-  for (const std::uint32_t c : reachable_) {
+  for (const std::uint32_t c : *reachable_) {
     if (known.at(c) == Cell::kUnknown) unsensed_.push_back(c);
   }
   if (unsensed_.empty()) return std::numeric_limits<double>::infinity();

@@ -31,21 +31,22 @@ double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>&
 // Memory is taken by create().
 class UnsensedDistance {
  public:
-  // `truth` must outlive the object. Errors as for DistanceField::create.
+  // `truth` and `reachable` (reachable_free_cells of it) must outlive the object. Errors as
+  // for DistanceField::create.
   static Result<UnsensedDistance> create(const OccupancyGrid& truth,
-                                         std::vector<std::uint32_t> reachable);
+                                         const std::vector<std::uint32_t>& reachable);
   // [m] +infinity when every reachable cell is sensed, or none is reachable from (x_m, y_m).
   // One wavefront over the map: O(cells).
   double from(const OccupancyGrid& known, double x_m, double y_m);
 
  private:
-  UnsensedDistance(const OccupancyGrid& truth, std::vector<std::uint32_t> reachable,
+  UnsensedDistance(const OccupancyGrid& truth, const std::vector<std::uint32_t>& reachable,
                    DistanceField field)
-      : truth_(&truth), reachable_(std::move(reachable)), field_(std::move(field)) {
-    unsensed_.reserve(reachable_.size());
+      : truth_(&truth), reachable_(&reachable), field_(std::move(field)) {
+    unsensed_.reserve(reachable.size());
   }
   const OccupancyGrid* truth_;
-  std::vector<std::uint32_t> reachable_;
+  const std::vector<std::uint32_t>* reachable_;
   std::vector<std::uint32_t> unsensed_;
   DistanceField field_;
 };
