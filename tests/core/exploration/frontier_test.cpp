@@ -192,14 +192,31 @@ TEST_F(FrontierTargetTest, TiesGoToTheGroupWithTheLowestCellIndex) {
   }
 }
 
-TEST_F(FrontierTargetTest, GroupsBelowTheMinimumSizeAreIgnored) {
+TEST_F(FrontierTargetTest, SmallGroupsAreLeftForLastButNotForgotten) {
   room();
-  unknown_block(3.0, 2.9, 0.1, 0.1);  // a single unknown cell: 4 frontier cells
-  config.min_group_cells = 5;
-  EXPECT_EQ(update(1.5, 3.0), ExplorationStatus::kComplete);
-  config.min_group_cells = 4;
+  unknown_block(3.0, 2.9, 0.1, 0.1);  // a single unknown cell: 4 frontier cells, 1.5 m away
+  unknown_block(8.0, 1.0, 1.0, 2.0);  // 60 frontier cells, 6.5 m away
+  // By score alone the single cell is the target (as the size weight means).
+  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  EXPECT_EQ(target_size(), 4U);
+  // Left for last: the far group is the target while it is there ...
+  config.small_group_cells = 5;
   frontiers.reset();
-  EXPECT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  EXPECT_EQ(target_size(), 60U);
+  // ... and once it is sensed the single cell is, so exploration does not end with it unsensed.
+  grid->fill_rect(8.01, 1.01, 8.99, 2.99, Cell::kFree);
+  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  EXPECT_EQ(target_size(), 4U);
+  grid->fill_rect(3.01, 2.91, 3.09, 2.99, Cell::kFree);
+  EXPECT_EQ(update(1.5, 3.0), ExplorationStatus::kComplete);
+  // A group of exactly small_group_cells is not small.
+  config.small_group_cells = 4;
+  frontiers.reset();
+  unknown_block(3.0, 2.9, 0.1, 0.1);
+  unknown_block(8.0, 1.0, 1.0, 2.0);
+  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  EXPECT_EQ(target_size(), 4U);
 }
 
 TEST_F(FrontierTest, AGroupGivenUpIsNoLongerATargetAndWhenOnlySuchRemainExplorationEnds) {
@@ -255,7 +272,7 @@ TEST(FrontierConfigTest, BadValuesAreRefusedByName) {
   config.size_weight = -1.0;
   EXPECT_FALSE(FrontierMap::create(10, 10, 0.1, config).ok());
   config = FrontierConfig{};
-  config.min_group_cells = 0;
+  config.small_group_cells = 0;
   EXPECT_FALSE(FrontierMap::create(10, 10, 0.1, config).ok());
   config = FrontierConfig{};
   config.give_up_radius_m = std::nan("");

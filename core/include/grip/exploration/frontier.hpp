@@ -62,16 +62,20 @@ struct FrontierConfig {
   // distance decides among them and the robot does not cross the map for a shorter one.
   double size_weight = 0.5;
   double size_cap_m = 6.0;
-  // Groups with fewer cells are ignored (1: none is). Raise it to skip single unknown cells
-  // a sensor may leave between its rays.
-  std::uint32_t min_group_cells = 1;
+  // Groups with fewer cells are left for last: a target only when no larger group is
+  // reachable (1: none is). Groups of one to three cells are mostly a range sensor's leftovers,
+  // cells between its rays and at the jagged rim of its disk, which the vehicle senses anyway
+  // as it passes; chosen first, as the size weight would, they pull it back and forth for a
+  // cell of coverage each. Left for last rather than ignored, so that exploration still ends
+  // only when no reachable frontier remains.
+  std::uint32_t small_group_cells = 1;
   // [m] give_up() sets aside the frontier cells within this distance of a group's cells: the
   // group, and what it becomes while the map around it does not change, is no longer a target.
   double give_up_radius_m = 1.0;
 
   // Errors name the bad value: clearance_m < 0, approach_range_m not > clearance_m + one cell
   // diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0 (or any of them not
-  // finite), min_group_cells 0.
+  // finite), small_group_cells 0.
   Status validate(double resolution_m) const;
 };
 
