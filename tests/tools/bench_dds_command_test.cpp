@@ -27,6 +27,19 @@ TEST(BenchDdsCommand, MeasuresBothSidesWithAVehicleThatFollowsThePlans) {
   // Both sides measured in each round, in turn.
   EXPECT_EQ(j.at("rounds").get<unsigned>(), 2U);
   EXPECT_EQ(j.at("planner").at("rounds").size(), 2U);
+  // Each round names its slowest plans, slowest first, within the round and the pooled max.
+  for (const nlohmann::json& round : j.at("planner").at("rounds")) {
+    const nlohmann::json& slowest = round.at("slowest_s_us");
+    ASSERT_GE(slowest.size(), 1U);
+    EXPECT_LE(slowest.size(), 3U);
+    double previous = j.at("planner").at("max").get<double>() + 1e-3;
+    for (const nlohmann::json& plan : slowest) {
+      EXPECT_GE(plan[0].get<double>(), 0.0);
+      EXPECT_LE(plan[0].get<double>(), 3.0);  // measured after the round's first second
+      EXPECT_LE(plan[1].get<double>(), previous);
+      previous = plan[1].get<double>();
+    }
+  }
   for (int round = 1; round <= 2; ++round) {
     EXPECT_NE(r.output.find("round " + std::to_string(round) + ": plan delivery p99"),
               std::string::npos)

@@ -75,12 +75,26 @@ struct PlannerSide {
   double distance_m = 0.0;  // driven by the vehicle side
   std::uint64_t goals_reached = 0;
   std::uint64_t refused = 0;  // plans not starting where the vehicle was
+  // Per round, its slowest plans: [seconds into the round's measurement, latency us], slowest
+  // first. When they came says whether a tail is one stall or spread over the round.
+  std::vector<nlohmann::json> slowest;
+  static constexpr std::size_t kSlowestKept = 3;
+  void note(double at_s, double latency_us) {
+    if (slowest.empty()) slowest.emplace_back(nlohmann::json::array());
+    nlohmann::json& kept = slowest.back();
+    const auto at = std::find_if(kept.begin(), kept.end(), [&](const nlohmann::json& k) {
+      return k[1].get<double>() < latency_us;
+    });
+    kept.insert(at, nlohmann::json::array({at_s, latency_us}));
+    if (kept.size() > kSlowestKept) kept.erase(kept.end() - 1);
+  }
   double mean_plan_bytes() const {
     return plans == 0 ? 0.0 : plan_bytes / static_cast<double>(plans);
   }
   void add(const PlannerSide& round) {
     latency.merge(round.latency);
     reports.insert(reports.end(), round.reports.begin(), round.reports.end());
+    slowest.insert(slowest.end(), round.slowest.begin(), round.slowest.end());
     plan_bytes += round.plan_bytes;
     plans += round.plans;
     distance_m += round.distance_m;
@@ -153,6 +167,26 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
   // they meet a link still settling (the first samples of a reliable writer, cold caches).
   std::int64_t measure_from_ns = 0;
   while (std::chrono::steady_clock::now() < until) {
+    // A plan first: it is what the wake-up was for, and the latency is taken when it is
+    // taken, not after this tick's state went out.
+    bool planner_done = false;
+    if (const grip_msg_Plan* plan = (*link)->take_plan()) {
+      const auto committed = static_cast<std::int64_t>(plan->committed_monotonic_ns);
+      if (!seen_plans) measure_from_ns = committed + 1'000'000'000;
+      if (committed >= measure_from_ns) {
+        const std::int64_t latency_ns = platform::now_ns() - committed;
+        out.latency.record(latency_ns);
+        out.note(static_cast<double>(committed - measure_from_ns) * 1e-9,
+                 static_cast<double>(latency_ns) * 1e-3);
+      }
+      out.plan_bytes += static_cast<double>(sizeof(grip_msg_Plan) - sizeof(plan->steps) + 4 +
+                                            plan->steps._length * sizeof(grip_msg_PlanStep));
+      ++out.plans;
+      static_cast<void>(sim::submit_wire_plan(*executor, *plan, steps));
+      seen_plans = true;
+    } else {
+      planner_done = seen_plans && !(*link)->planner_alive();
+    }
     const std::int64_t now = platform::now_ns();
     if (now >= executor->now_ns() + executor->step_ns()) {
       executor->run_until(now);
@@ -173,18 +207,7 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
         static_cast<void>(publish_goal());
       }
     }
-    if (const grip_msg_Plan* plan = (*link)->take_plan()) {
-      const auto committed = static_cast<std::int64_t>(plan->committed_monotonic_ns);
-      if (!seen_plans) measure_from_ns = committed + 1'000'000'000;
-      if (committed >= measure_from_ns) out.latency.record(platform::now_ns() - committed);
-      out.plan_bytes += static_cast<double>(sizeof(grip_msg_Plan) - sizeof(plan->steps) + 4 +
-                                            plan->steps._length * sizeof(grip_msg_PlanStep));
-      ++out.plans;
-      static_cast<void>(sim::submit_wire_plan(*executor, *plan, steps));
-      seen_plans = true;
-    } else if (seen_plans && !(*link)->planner_alive()) {
-      break;  // the planner finished its duration
-    }
+    if (planner_done) break;  // the planner finished its duration
     // Woken by the plan's arrival, as a controller would be (ddsperf waits the same way).
     (*link)->wait_for_plan_or_request(std::chrono::nanoseconds(std::clamp<std::int64_t>(
         executor->now_ns() + executor->step_ns() - platform::now_ns(), 0, 50'000'000)));
@@ -336,14 +359,21 @@ int run_bench_dds(const BenchDdsOptions& o) {
       return 1;
     }
     const nlohmann::json& report = planner->reports.front();
+    std::string slowest;
+    for (const nlohmann::json& k : planner->slowest.front()) {
+      char one[48];
+      std::snprintf(one, sizeof one, "%s%.0f us at %.1f s", slowest.empty() ? "" : ", ",
+                    k[1].get<double>(), k[0].get<double>());
+      slowest += one;
+    }
     std::printf(
         "round %u: plan delivery p99 %.1f us (%llu plans measured; commit -> publish thread p99 "
-        "%.1f us, "
-        "dds_write p99 %.1f us); ddsperf p99 at least %.1f us\n",
+        "%.1f us, dds_write p99 %.1f us; slowest %s); ddsperf p99 at least %.1f us\n",
         round, us(planner->latency.percentile(0.99)),
         static_cast<unsigned long long>(planner->latency.count()),
         part(report, "plan_handoff_us").value("p99", 0.0),
-        part(report, "plan_write_us").value("p99", 0.0), ddsperf->pooled_p99_at_least_us());
+        part(report, "plan_write_us").value("p99", 0.0), slowest.c_str(),
+        ddsperf->pooled_p99_at_least_us());
     ours.add(*planner);
     theirs.add(*ddsperf);
   }
@@ -388,9 +418,10 @@ int run_bench_dds(const BenchDdsOptions& o) {
     j["planner"] = summary_us(ours.latency);
     j["planner"]["mean_plan_bytes"] = ours.mean_plan_bytes();
     nlohmann::json rounds = nlohmann::json::array();
-    for (const nlohmann::json& report : ours.reports) {
-      rounds.push_back({{"handoff_us", part(report, "plan_handoff_us")},
-                        {"write_us", part(report, "plan_write_us")}});
+    for (std::size_t r = 0; r < ours.reports.size(); ++r) {
+      rounds.push_back({{"handoff_us", part(ours.reports[r], "plan_handoff_us")},
+                        {"write_us", part(ours.reports[r], "plan_write_us")},
+                        {"slowest_s_us", ours.slowest[r]}});
     }
     j["planner"]["rounds"] = rounds;
     j["vehicle"] = {{"distance_m", ours.distance_m},
