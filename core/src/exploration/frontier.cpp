@@ -52,7 +52,9 @@ Status FrontierConfig::validate(double resolution_m) const {
   if (!(std::isfinite(give_up_radius_m) && give_up_radius_m >= 0.0)) {
     return bad("give_up_radius_m", give_up_radius_m, "finite and >= 0");
   }
-  if (small_group_cells == 0) return bad("small_group_cells", 0.0, ">= 1");
+  if (!(std::isfinite(min_group_m) && min_group_m >= 0.0)) {
+    return bad("min_group_m", min_group_m, "finite and >= 0");
+  }
   return Ok{};
 }
 
@@ -148,35 +150,26 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
   seed_robot_field(grid, robot_cx, robot_cy);
   field_.propagate(seeds_.span());
 
-  // The target: the least score among the groups of at least small_group_cells, or if there
-  // is none, among the small ones; ties go to the group found first (lowest cell index).
+  // The target: the least score; ties go to the group found first (lowest cell index).
   double best = std::numeric_limits<double>::infinity();
-  double best_small = std::numeric_limits<double>::infinity();
-  std::uint32_t target_small = kNoGroup;
   given_up_groups_ = 0;
   for (std::uint32_t g = 0; g < groups_.size(); ++g) {
     FrontierGroup& group = groups_[g];
     measure_group(grid, group);
-    if (!group.reachable()) continue;
+    const double size_m = group.size * resolution_;
+    if (!group.reachable() || size_m < config_.min_group_m) continue;
     const auto cells = group_cells(g);
     if (std::all_of(cells.begin(), cells.end(),
                     [&](std::uint32_t c) { return given_up_[c] != 0; })) {
       ++given_up_groups_;
       continue;
     }
-    const double size_m = group.size * resolution_;
     group.score_m = group.rho_m + config_.size_weight * std::min(size_m, config_.size_cap_m);
-    if (group.size < config_.small_group_cells) {
-      if (group.score_m < best_small) {
-        best_small = group.score_m;
-        target_small = g;
-      }
-    } else if (group.score_m < best) {
+    if (group.score_m < best) {
       best = group.score_m;
       target_ = g;
     }
   }
-  if (target_ == kNoGroup) target_ = target_small;
   if (target_ == kNoGroup) {
     status_ = ExplorationStatus::kComplete;
     return status_;
