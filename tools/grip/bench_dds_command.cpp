@@ -75,18 +75,17 @@ struct PlannerSide {
   double distance_m = 0.0;  // driven by the vehicle side
   std::uint64_t goals_reached = 0;
   std::uint64_t refused = 0;  // plans not starting where the vehicle was
-  // Per round, its slowest plans: [seconds into the round's measurement, latency us], slowest
+  // A round's slowest plans: [seconds into the round's measurement, latency us], slowest
   // first. When they came says whether a tail is one stall or spread over the round.
-  std::vector<nlohmann::json> slowest;
+  nlohmann::json slowest = nlohmann::json::array();
+  std::vector<nlohmann::json> slowest_by_round;  // pooled over rounds by add()
   static constexpr std::size_t kSlowestKept = 3;
   void note(double at_s, double latency_us) {
-    if (slowest.empty()) slowest.emplace_back(nlohmann::json::array());
-    nlohmann::json& kept = slowest.back();
-    const auto at = std::find_if(kept.begin(), kept.end(), [&](const nlohmann::json& k) {
+    const auto at = std::find_if(slowest.begin(), slowest.end(), [&](const nlohmann::json& k) {
       return k[1].get<double>() < latency_us;
     });
-    kept.insert(at, nlohmann::json::array({at_s, latency_us}));
-    if (kept.size() > kSlowestKept) kept.erase(kept.end() - 1);
+    slowest.insert(at, nlohmann::json::array({at_s, latency_us}));
+    if (slowest.size() > kSlowestKept) slowest.erase(slowest.end() - 1);
   }
   double mean_plan_bytes() const {
     return plans == 0 ? 0.0 : plan_bytes / static_cast<double>(plans);
@@ -94,7 +93,7 @@ struct PlannerSide {
   void add(const PlannerSide& round) {
     latency.merge(round.latency);
     reports.insert(reports.end(), round.reports.begin(), round.reports.end());
-    slowest.insert(slowest.end(), round.slowest.begin(), round.slowest.end());
+    slowest_by_round.push_back(round.slowest);
     plan_bytes += round.plan_bytes;
     plans += round.plans;
     distance_m += round.distance_m;
@@ -360,7 +359,7 @@ int run_bench_dds(const BenchDdsOptions& o) {
     }
     const nlohmann::json& report = planner->reports.front();
     std::string slowest;
-    for (const nlohmann::json& k : planner->slowest.front()) {
+    for (const nlohmann::json& k : planner->slowest) {
       char one[48];
       std::snprintf(one, sizeof one, "%s%.0f us at %.1f s", slowest.empty() ? "" : ", ",
                     k[1].get<double>(), k[0].get<double>());
@@ -421,7 +420,7 @@ int run_bench_dds(const BenchDdsOptions& o) {
     for (std::size_t r = 0; r < ours.reports.size(); ++r) {
       rounds.push_back({{"handoff_us", part(ours.reports[r], "plan_handoff_us")},
                         {"write_us", part(ours.reports[r], "plan_write_us")},
-                        {"slowest_s_us", ours.slowest[r]}});
+                        {"slowest_s_us", ours.slowest_by_round[r]}});
     }
     j["planner"]["rounds"] = rounds;
     j["vehicle"] = {{"distance_m", ours.distance_m},
