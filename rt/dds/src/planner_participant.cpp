@@ -315,11 +315,6 @@ class PlannerParticipantFor final : public PlannerParticipant {
   // Set by the planning thread once the plan's end is settled, before it extracts the plan:
   // the publish thread wakes meanwhile and is running when the plan is handed over.
   std::atomic<bool> plan_coming_{false};
-  // Real time, going to a goal: when this cycle's growth stops (its deadline less the safety
-  // margin), the plan's commit following at once; the publish thread wakes ahead of it. 0 when
-  // not known ahead: in lockstep, or exploring (path selection after growth takes varying time).
-  std::atomic<std::int64_t> plan_due_ns_{0};
-  std::int64_t safety_margin_ns_ = 0;  // the cycle's (CycleConfig::safety_margin_ns)
   std::uint64_t state_sequence_ = 0;
   std::uint64_t plan_start_ns_ = 0;  // vehicle time at which this cycle's plan starts
   std::uint64_t last_state_stamp_ns_ = 0;
@@ -660,10 +655,6 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
   if (new_state) note_vehicle_state(states_->read_buffer());
   chain_plan_start(release_ns);
   if (new_state) check_vehicle_follows(states_->read_buffer());
-  if (!exploring_) {
-    plan_due_ns_.store(deadline_ns - safety_margin_ns_, std::memory_order_release);
-    wakeup_.signal();  // the publish thread learns the due time now, to wake ahead of it
-  }
   return plan_cycle(start, changes, deadline_ns);
 }
 
@@ -897,33 +888,15 @@ void PlannerParticipantFor<V>::publish_main() {
   // over: the thread's wake-up latency (40-65 us median here, far more in the VM's tail) then
   // overlaps that work instead of adding to the plan's delivery, and the thread, running, watches
   // the hand-off for the plan, at most kPlanComingWatchNs (the extraction takes tens of us).
-  // Where the commit's time is known ahead (plan_due_ns_), the thread wakes kDueLeadNs before it
-  // and watches from then: its wake-up is then off the plan's way altogether.
   constexpr std::int64_t kPlanComingWatchNs = 1'000'000;
-  constexpr std::int64_t kDueLeadNs = 250'000;
-  std::int64_t watched_due = 0;
   PublishTiming timing;
   while (!threads_stop_.load(std::memory_order_acquire)) {
-    const std::int64_t due = plan_due_ns_.load(std::memory_order_acquire);
-    const bool due_ahead = due != 0 && due != watched_due;
-    std::int64_t timeout_ns = 100'000'000;
-    if (due_ahead) timeout_ns = std::min(timeout_ns, due - kDueLeadNs - platform::now_ns());
-    static_cast<void>(wakeup_.wait(std::chrono::nanoseconds(timeout_ns)));
-    const std::int64_t now = platform::now_ns();
-    std::int64_t watch_until = 0;
-    if (due_ahead && now >= due - kDueLeadNs) {
-      watched_due = due;
-      watch_until = due + kPlanComingWatchNs;
-    }
-    if (plan_coming_.load(std::memory_order_acquire)) {
-      watch_until = std::max(watch_until, now + kPlanComingWatchNs);
-    }
-    while (watch_until != 0 && !plans_->fresh() && platform::now_ns() < watch_until) {
-      platform::cpu_relax();
+    static_cast<void>(wakeup_.wait(std::chrono::milliseconds(100)));
+    if (plan_coming_.exchange(false, std::memory_order_acquire)) {
+      const std::int64_t watch_until = platform::now_ns() + kPlanComingWatchNs;
+      while (!plans_->fresh() && platform::now_ns() < watch_until) platform::cpu_relax();
     }
     if (plans_->update()) {
-      // The announcement was this plan's: the next comes a cycle later.
-      plan_coming_.store(false, std::memory_order_relaxed);
       publish_plan(plans_->read_buffer(), timing);
       publish_timing_->write(timing);
     }
@@ -1084,7 +1057,6 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
         std::to_string(margin_ms) + " ms");
   }
   cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
-  safety_margin_ns_ = cycle_config.safety_margin_ns;
   // Exploring, rho comes with each target (ExplorationTarget::rho); in real time the target
   // thread takes a cycle, so the planner's own refresh is only a fallback for a late target.
   cycle_config.rho_refresh_cycles =
