@@ -52,9 +52,7 @@ Status FrontierConfig::validate(double resolution_m) const {
   if (!(std::isfinite(give_up_radius_m) && give_up_radius_m >= 0.0)) {
     return bad("give_up_radius_m", give_up_radius_m, "finite and >= 0");
   }
-  if (!(std::isfinite(min_group_m) && min_group_m >= 0.0)) {
-    return bad("min_group_m", min_group_m, "finite and >= 0");
-  }
+  if (min_group_cells == 0) return bad("min_group_cells", 0.0, ">= 1");
   return Ok{};
 }
 
@@ -156,14 +154,14 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
   for (std::uint32_t g = 0; g < groups_.size(); ++g) {
     FrontierGroup& group = groups_[g];
     measure_group(grid, group);
-    const double size_m = group.size * resolution_;
-    if (!group.reachable() || size_m < config_.min_group_m) continue;
+    if (!group.reachable() || group.size < config_.min_group_cells) continue;
     const auto cells = group_cells(g);
     if (std::all_of(cells.begin(), cells.end(),
                     [&](std::uint32_t c) { return given_up_[c] != 0; })) {
       ++given_up_groups_;
       continue;
     }
+    const double size_m = group.size * resolution_;
     group.score_m = group.rho_m + config_.size_weight * std::min(size_m, config_.size_cap_m);
     if (group.score_m < best) {
       best = group.score_m;

@@ -1072,7 +1072,6 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
   ExplorationTargetConfig target_config;
   target_config.frontier.clearance_m = planner_config.rho_clearance_m;
   target_config.give_up_after_s = config_.frontier_give_up_s;
-  target_config.frontier.min_group_m = config_.frontier_min_group_m;
   auto target = ExplorationTarget::create(grid, target_config);
   if (!target) return target.error();
   target_.emplace(std::move(target).value());

@@ -192,27 +192,14 @@ TEST_F(FrontierTargetTest, TiesGoToTheGroupWithTheLowestCellIndex) {
   }
 }
 
-TEST_F(FrontierTargetTest, GroupsShorterThanTheMinimumAreNotTargets) {
+TEST_F(FrontierTargetTest, GroupsBelowTheMinimumSizeAreIgnored) {
   room();
-  unknown_block(3.0, 2.9, 0.1, 0.1);  // a single unknown cell: 4 frontier cells (0.4 m), 1.5 m away
-  unknown_block(8.0, 1.0, 1.0, 2.0);  // 60 frontier cells, 6.5 m away
-  // By score the single cell is the target (the size weight puts small groups first) ...
-  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
-  EXPECT_EQ(target_size(), 4U);
-  // ... unless it is shorter than the minimum, when the far group is.
-  config.min_group_m = 0.45;
-  frontiers.reset();
-  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
-  EXPECT_EQ(target_size(), 60U);
-  // When only such short groups remain, exploration is over.
-  grid->fill_rect(8.01, 1.01, 8.99, 2.99, Cell::kFree);
+  unknown_block(3.0, 2.9, 0.1, 0.1);  // a single unknown cell: 4 frontier cells
+  config.min_group_cells = 5;
   EXPECT_EQ(update(1.5, 3.0), ExplorationStatus::kComplete);
-  EXPECT_EQ(frontiers->groups().size(), 1U);
-  // A group as long as the minimum is a target.
-  config.min_group_m = 0.4;
+  config.min_group_cells = 4;
   frontiers.reset();
-  ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
-  EXPECT_EQ(target_size(), 4U);
+  EXPECT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
 }
 
 TEST_F(FrontierTest, AGroupGivenUpIsNoLongerATargetAndWhenOnlySuchRemainExplorationEnds) {
@@ -268,10 +255,8 @@ TEST(FrontierConfigTest, BadValuesAreRefusedByName) {
   config.size_weight = -1.0;
   EXPECT_FALSE(FrontierMap::create(10, 10, 0.1, config).ok());
   config = FrontierConfig{};
-  config.min_group_m = -0.1;
-  const auto negative_minimum = FrontierMap::create(10, 10, 0.1, config);
-  ASSERT_FALSE(negative_minimum.ok());
-  EXPECT_NE(negative_minimum.error().message.find("min_group_m"), std::string::npos);
+  config.min_group_cells = 0;
+  EXPECT_FALSE(FrontierMap::create(10, 10, 0.1, config).ok());
   config = FrontierConfig{};
   config.give_up_radius_m = std::nan("");
   const auto nan_radius = FrontierMap::create(10, 10, 0.1, config);

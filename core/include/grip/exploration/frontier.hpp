@@ -40,7 +40,7 @@ namespace grip {
 
 enum class ExplorationStatus {
   kTarget,            // a reachable frontier group was chosen: target() and approach_cells()
-  kComplete,          // no reachable frontier (of min_group_m) remains: exploration is over
+  kComplete,          // no reachable frontier remains: exploration is over
   kRobotOutsideGrid,  // the robot's position is not a cell of the grid (or not finite)
 };
 std::string_view exploration_status_name(ExplorationStatus s) noexcept;
@@ -62,20 +62,16 @@ struct FrontierConfig {
   // distance decides among them and the robot does not cross the map for a shorter one.
   double size_weight = 0.5;
   double size_cap_m = 6.0;
-  // [m] Groups with a shorter frontier (cells x resolution) are not targets, and exploration
-  // ends when only such remain (0: every group is a target). A frontier shorter than the
-  // chassis is wide is no way into space the chassis could enter: such groups are mostly the
-  // pockets a range sensor leaves between its rays and at the jagged rim of its disk, which the
-  // vehicle senses anyway as it passes. The size weight puts them first, and as targets they
-  // pulled the vehicle back and forth for a cell of coverage each.
-  double min_group_m = 0.0;
+  // Groups with fewer cells are ignored (1: none is). Raise it to skip single unknown cells
+  // a sensor may leave between its rays.
+  std::uint32_t min_group_cells = 1;
   // [m] give_up() sets aside the frontier cells within this distance of a group's cells: the
   // group, and what it becomes while the map around it does not change, is no longer a target.
   double give_up_radius_m = 1.0;
 
   // Errors name the bad value: clearance_m < 0, approach_range_m not > clearance_m + one cell
   // diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0 (or any of them not
-  // finite), min_group_m < 0 or not finite.
+  // finite), min_group_cells 0.
   Status validate(double resolution_m) const;
 };
 
@@ -103,8 +99,8 @@ class FrontierMap {
   // computed from this grid at its current revision (e.g. the planner's
   // CollisionChecker::clearance() after a refresh; asserted). The robot is the reference point
   // at (robot_x_m, robot_y_m). kTarget when a group was chosen, kComplete when no reachable
-  // frontier group of at least min_group_m remains, kRobotOutsideGrid (nothing computed, no target)
-  // when the position is not in the grid.
+  // frontier group remains, kRobotOutsideGrid (nothing computed, no target) when the position
+  // is not in the grid.
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                            double robot_x_m, double robot_y_m) noexcept;
 

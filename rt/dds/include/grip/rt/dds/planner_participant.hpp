@@ -77,10 +77,6 @@ struct PlannerParticipantConfig {
   // A frontier target the vehicle gets no closer to (by rho_A*, 0.5 m) for this long, in
   // vehicle time, is given up (FrontierMap::give_up) and the next one chosen.
   double frontier_give_up_s = 60.0;
-  // [m] Frontier groups shorter than this are not targets (FrontierConfig::min_group_m): the
-  // sensor's leftovers between its rays and at its rim, 1 to 3 cells of the built-in scenes.
-  // Targeted first, they pulled the vehicle back and forth for a cell of coverage each.
-  double frontier_min_group_m = 0.35;
   // The frontier target is chosen again every this many cycles (1: every cycle). In real time the
   // choice runs on the target thread, but taking it over still costs the planning thread rho
   // toward the new target and the path selector's rays (whole-map passes, 0.5 to 1 ms on the
