@@ -75,17 +75,19 @@ struct PlannerSide {
   double distance_m = 0.0;  // driven by the vehicle side
   std::uint64_t goals_reached = 0;
   std::uint64_t refused = 0;  // plans not starting where the vehicle was
-  // A round's slowest plans: [seconds into the round's measurement, latency us], slowest
-  // first. When they came says whether a tail is one stall or spread over the round.
-  nlohmann::json slowest = nlohmann::json::array();
-  std::vector<nlohmann::json> slowest_by_round;  // pooled over rounds by add()
+  // Each round's slowest plans, one entry per round as for `reports`: [seconds into the round's
+  // measurement, latency us], slowest first. When they came says whether a tail is one stall
+  // or spread over the round.
+  std::vector<nlohmann::json> slowest;
   static constexpr std::size_t kSlowestKept = 3;
+  // A plan of the last round.
   void note(double at_s, double latency_us) {
-    const auto at = std::find_if(slowest.begin(), slowest.end(), [&](const nlohmann::json& k) {
+    nlohmann::json& kept = slowest.back();
+    const auto at = std::find_if(kept.begin(), kept.end(), [&](const nlohmann::json& k) {
       return k[1].get<double>() < latency_us;
     });
-    slowest.insert(at, nlohmann::json::array({at_s, latency_us}));
-    if (slowest.size() > kSlowestKept) slowest.erase(slowest.end() - 1);
+    kept.insert(at, nlohmann::json::array({at_s, latency_us}));
+    if (kept.size() > kSlowestKept) kept.erase(kept.end() - 1);
   }
   double mean_plan_bytes() const {
     return plans == 0 ? 0.0 : plan_bytes / static_cast<double>(plans);
@@ -93,7 +95,7 @@ struct PlannerSide {
   void add(const PlannerSide& round) {
     latency.merge(round.latency);
     reports.insert(reports.end(), round.reports.begin(), round.reports.end());
-    slowest_by_round.push_back(round.slowest);
+    slowest.insert(slowest.end(), round.slowest.begin(), round.slowest.end());
     plan_bytes += round.plan_bytes;
     plans += round.plans;
     distance_m += round.distance_m;
@@ -159,6 +161,7 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
   };
   if (Status s = publish_goal(); !s) return s.error();
   PlannerSide out;
+  out.slowest.emplace_back(nlohmann::json::array());  // this round's
   std::uint64_t sequence = 0;
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(seconds + 35);
   bool seen_plans = false;
@@ -359,7 +362,7 @@ int run_bench_dds(const BenchDdsOptions& o) {
     }
     const nlohmann::json& report = planner->reports.front();
     std::string slowest;
-    for (const nlohmann::json& k : planner->slowest) {
+    for (const nlohmann::json& k : planner->slowest.front()) {
       char one[48];
       std::snprintf(one, sizeof one, "%s%.0f us at %.1f s", slowest.empty() ? "" : ", ",
                     k[1].get<double>(), k[0].get<double>());
@@ -420,7 +423,7 @@ int run_bench_dds(const BenchDdsOptions& o) {
     for (std::size_t r = 0; r < ours.reports.size(); ++r) {
       rounds.push_back({{"handoff_us", part(ours.reports[r], "plan_handoff_us")},
                         {"write_us", part(ours.reports[r], "plan_write_us")},
-                        {"slowest_s_us", ours.slowest_by_round[r]}});
+                        {"slowest_s_us", ours.slowest[r]}});
     }
     j["planner"]["rounds"] = rounds;
     j["vehicle"] = {{"distance_m", ours.distance_m},
