@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -66,6 +67,31 @@ TEST_F(DdVelocityTest, SampledControlsStayWithinWheelAndTurnRateLimits) {
   }
 }
 
+TEST_F(DdVelocityTest, TheTopSpeedShareOfSampledControlsDrivesTheFasterWheelAtItsLimit) {
+  for (const double share : {0.0, 0.8, 1.0}) {
+    DdVelocityParams params;
+    params.top_speed_share = share;
+    const DdVelocity r = DdVelocity::create(params).value();
+    Random rng(11);
+    int at_limit = 0;
+    int forward = 0;
+    constexpr int kSamples = 20'000;
+    for (int i = 0; i < kSamples; ++i) {
+      const auto u = r.sample_control(rng);
+      ASSERT_TRUE(r.validate_control(u)) << r.validate_control(u).error().message;
+      if (std::max(std::abs(u[0]), std::abs(u[1])) > params.max_wheel_speed_m_s - 1e-9) {
+        ++at_limit;
+        forward += u[0] + u[1] > 0.0 ? 1 : 0;
+      }
+    }
+    EXPECT_NEAR(static_cast<double>(at_limit) / kSamples, share, 0.01) << "share " << share;
+    // Backward as often as forward: the sensor sees all around, either way explores.
+    if (at_limit > 0) {
+      EXPECT_NEAR(static_cast<double>(forward) / at_limit, 0.5, 0.02);
+    }
+  }
+}
+
 TEST_F(DdVelocityTest, ContingencyIsTrivialTheRobotStopsWhereItIs) {
   const DdVelocity::State q{3.0, 4.0, 1.0};
   EXPECT_TRUE(robot.is_stopped(q));
@@ -81,6 +107,13 @@ TEST_F(DdVelocityTest, InvalidParametersAreRefusedWithTheParameterNamed) {
   EXPECT_NE(r.error().message.find("max_wheel_speed_m_s"), std::string::npos);
   p = DdVelocityParams{};
   p.half_axle_m = std::nan("");
+  EXPECT_FALSE(DdVelocity::create(p));
+  p = DdVelocityParams{};
+  p.top_speed_share = 1.5;
+  auto share = DdVelocity::create(p);
+  ASSERT_FALSE(share);
+  EXPECT_NE(share.error().message.find("top_speed_share"), std::string::npos);
+  p.top_speed_share = std::nan("");
   EXPECT_FALSE(DdVelocity::create(p));
   p = DdVelocityParams{};
   p.footprint.half_width_m = 0.0;

@@ -18,6 +18,9 @@ struct DdVelocityParams {
   double max_turn_rate_rad_s = std::numbers::pi / 2;  // paper: |theta'| <= 90 deg/s
   double half_axle_m = 0.2;                           // L
   Footprint footprint{0.25, 0.25, 0.2};               // 0.5 m x 0.4 m around the axle centre
+  // The share of the planner's sampled controls that drive the faster wheel at its limit
+  // (sample_control), in [0, 1].
+  double top_speed_share = 0.8;
 
   Status validate() const;
 };
