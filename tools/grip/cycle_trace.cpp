@@ -22,7 +22,8 @@ Result<CycleTrace> CycleTrace::open(const std::string& path) {
   }
   // Times in microseconds; release_ms from the first traced cycle's release.
   std::fputs(
-      "cycle,release_ms,wake_us,prepare_us,retain_us,grow_us,commit_us,compute_us,lateness_us,"
+      "cycle,release_ms,wake_us,prepare_us,retain_us,grow_us,commit_us,commit_reserve_us,compute_"
+      "us,lateness_us,"
       "missed,skipped,restarted,committed,kept_previous,plan_available,pool_exhausted,edges_added,"
       "edges_retained,tree_edges,plan_duration_s,retain_status,restart_cause\n",
       file);
@@ -35,18 +36,18 @@ void CycleTrace::write(const rt::CycleRecord& r) {
   const rt::CycleOutcome& o = r.outcome;
   const std::string_view retain_status = retain_status_name(o.retain_status);
   const std::string_view restart_cause = rt::restart_cause_name(o.restart_cause);
-  std::fprintf(file_.get(),
-               "%llu,%.3f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%d,%d,%d,%d,%d,%d,%d,%llu,%u,%u,%.3f,%"
-               ".*s,%.*s\n",
-               static_cast<unsigned long long>(r.cycle),
-               static_cast<double>(r.release_ns - first_release_ns_) * 1e-6, us(r.wake_latency_ns),
-               us(o.prepare_ns), us(o.retain_ns), us(o.grow_ns), us(o.commit_ns), us(r.compute_ns),
-               us(r.lateness_ns), r.missed ? 1 : 0, r.skipped ? 1 : 0, o.restarted() ? 1 : 0,
-               o.committed ? 1 : 0, o.kept_previous ? 1 : 0, o.plan_available ? 1 : 0,
-               o.pool_exhausted ? 1 : 0, static_cast<unsigned long long>(o.edges_added),
-               o.edges_retained, o.tree_edges, o.plan_duration_s,
-               static_cast<int>(retain_status.size()), retain_status.data(),
-               static_cast<int>(restart_cause.size()), restart_cause.data());
+  std::fprintf(
+      file_.get(),
+      "%llu,%.3f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%d,%d,%d,%d,%d,%d,%d,%llu,%u,%u,%.3f,%"
+      ".*s,%.*s\n",
+      static_cast<unsigned long long>(r.cycle),
+      static_cast<double>(r.release_ns - first_release_ns_) * 1e-6, us(r.wake_latency_ns),
+      us(o.prepare_ns), us(o.retain_ns), us(o.grow_ns), us(o.commit_ns), us(o.commit_reserve_ns),
+      us(r.compute_ns), us(r.lateness_ns), r.missed ? 1 : 0, r.skipped ? 1 : 0,
+      o.restarted() ? 1 : 0, o.committed ? 1 : 0, o.kept_previous ? 1 : 0, o.plan_available ? 1 : 0,
+      o.pool_exhausted ? 1 : 0, static_cast<unsigned long long>(o.edges_added), o.edges_retained,
+      o.tree_edges, o.plan_duration_s, static_cast<int>(retain_status.size()), retain_status.data(),
+      static_cast<int>(restart_cause.size()), restart_cause.data());
 }
 
 Status CycleTrace::close() {

@@ -55,6 +55,7 @@ struct ExploreOptions {
   std::string cycle_trace;  // grip explore: the planner's cycles, as CSV
 };
 
+// Ends the run: a signal, or the planner of grip explore failing on its own.
 std::atomic<bool> g_stop{false};
 extern "C" void stop_exploration(int) { g_stop.store(true); }
 
@@ -328,17 +329,39 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
       return 2;
     }
     planner = std::move(created).value();
-    planner_thread = std::thread([&] { planner_result = planner->run(); });
+  }
+  // A planner that fails before the simulation has finished (at start-up, say) ends the run
+  // as an error at once, with its reason, rather than leaving the vehicle waiting for plans.
+  std::atomic<bool> sim_finished{false};
+  std::atomic<bool> planner_failed{false};
+  if (planner) {
+    planner_thread = std::thread([&] {
+      planner_result = planner->run();
+      if (!planner_result->ok() && !sim_finished.load()) {
+        planner_failed.store(true);
+        g_stop.store(true);
+      }
+    });
   }
   sim::SimRunConfig config = sim_config(o, *robot, *world);
-  if (planner) config.on_finished = [&planner] { planner->request_stop(); };
-  const auto run = sim::run_simulation(config, world->truth, g_stop, progress_line());
+  config.on_finished = [&] {
+    sim_finished.store(true);
+    if (planner) planner->request_stop();
+  };
+  auto run = sim::run_simulation(config, world->truth, g_stop, progress_line());
   if (isatty(STDERR_FILENO) == 1) std::cerr << "\n";
   if (planner) {
+    sim_finished.store(true);
     planner->request_stop();
     planner_thread.join();
     if (planner_result && !planner_result->ok()) {
-      std::cerr << command << ": planner: " << planner_result->error().message << "\n";
+      const std::string why = "planner: " + planner_result->error().message;
+      if (run && planner_failed.load()) {
+        run->result = "error";
+        run->reason = why;
+      } else {
+        std::cerr << command << ": " << why << "\n";
+      }
     }
   }
   if (trace) {

@@ -182,7 +182,8 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   planner_config.max_trajectories = planner_config.max_edges / 2;
   rt::CycleConfig cycle_config;
   cycle_config.cycle_s = period_s;
-  const double margin_ms = o.margin_ms >= 0.0 ? o.margin_ms : std::max(2.0, o.budget_ms / 5.0);
+  const double margin_ms =
+      o.margin_ms >= 0.0 ? o.margin_ms : rt::default_safety_margin_ms(o.budget_ms);
   cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
   auto cycle = rt::ReplanningCycle<V>::create(vehicle, scene.grid, planner_config, cycle_config);
   if (!cycle) {
@@ -515,8 +516,9 @@ void register_stress_command(CLI::App& app) {
   cmd->add_option("--period-ms", o->period_ms, "Planning cycle period [ms]")->capture_default_str();
   cmd->add_option("--budget-ms", o->budget_ms, "Compute budget per cycle (the deadline) [ms]")
       ->capture_default_str();
-  cmd->add_option("--margin-ms", o->margin_ms,
-                  "The planner stops this long before its deadline (default: budget/5, >= 2 ms)");
+  cmd->add_option(
+      "--margin-ms", o->margin_ms,
+      "The planner stops this long before its deadline (default: budget/5, >= 2 ms, <= budget/2)");
   cmd->add_option("--load", o->load, "none, cpu, mem or all")->capture_default_str();
   cmd->add_option("--policy", o->policy, "auto, deadline, fifo or other")->capture_default_str();
   cmd->add_option("--robot", o->robot, "dd-vel, dd-accel or car")->capture_default_str();

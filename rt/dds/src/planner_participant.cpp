@@ -1046,19 +1046,19 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
   planner_config.max_trajectories = planner_config.max_edges / 2;
   CycleConfig cycle_config;
   cycle_config.cycle_s = config_.cycle_s;
-  double margin_ms = config_.margin_s >= 0.0 ? config_.margin_s * 1e3 / time_scale
-                                             : std::max(2.0, wall_budget_ms / 5.0);
-  // Path selection runs after growth: the margin leaves it room. 1 us per edge: with dd-vel's
-  // top-speed controls the tree reaches the frontier and most of its states see target cells,
-  // and committing took 0.65 us per edge median, 0.9 at the 90th percentile (two real-time runs
-  // on two cores); at 0.5 us per edge 3.8% of rooms / dd-vel's cycles missed.
-  if (explore) margin_ms += static_cast<double>(planner_config.max_edges) * 1.0e-3;
+  const double margin_ms = config_.margin_s >= 0.0 ? config_.margin_s * 1e3 / time_scale
+                                                   : default_safety_margin_ms(wall_budget_ms);
   if (margin_ms >= wall_budget_ms && !lockstep_) {
     return invalid_argument(
         "the budget (" + std::to_string(wall_budget_ms) +
         " ms of wall clock) leaves no time to grow the tree after a margin of " +
         std::to_string(margin_ms) + " ms");
   }
+  // Exploring, the plan is chosen by a pass over the whole tree (PathSelector) after growth;
+  // the cycle learns what that costs, and starts from 1 us per edge: with dd-vel's top-speed
+  // controls most states see target cells, and committing took 0.65 us per edge median, 0.9
+  // at the 90th percentile (two real-time runs on two cores).
+  if (explore) cycle_config.commit_ns_per_edge_prior = 1000.0;
   cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
   // Exploring, rho comes with each target (ExplorationTarget::rho); in real time the target
   // thread takes a cycle, so the planner's own refresh is only a fallback for a late target.

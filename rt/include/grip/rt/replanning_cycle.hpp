@@ -10,6 +10,9 @@
 //      ends in a collision-free contingency by construction.
 // Allocation-free after create(); never throws.
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -22,15 +25,50 @@ namespace grip::rt {
 
 struct CycleConfig {
   double cycle_s = 0.05;  // T: the duration of every cycle, a whole number of integration steps
-  // The planner stops growing this long before the deadline: room for committing the plan and
-  // for the stalls of a shared machine (several milliseconds on the VMs measured here).
+  // The planner stops growing this long before the deadline, and besides early enough to
+  // commit the plan (CommitReserve): room for the stalls of a shared machine (several
+  // milliseconds on the VMs measured here) and for the caller's work after the cycle.
   std::int64_t safety_margin_ns = 5'000'000;
+  // What committing is taken to cost per tree edge until the first commit is timed (for
+  // exploration's pass over the tree, PathSelector, about 1 us per edge); 0: nothing.
+  double commit_ns_per_edge_prior = 0.0;
   std::uint32_t max_plan_pieces = 1024;
   // rho toward a target that has not changed is recomputed every this many cycles (1: every
   // cycle). It is a wavefront over the whole map; where the map changes every cycle, as in
   // exploration, recomputing it each time can take most of a short cycle's budget, while rho
   // only orders the search (collisions are always checked on the current map).
   std::uint32_t rho_refresh_cycles = 1;
+};
+
+// A safety margin for a cycle's budget: a fifth of it, at least 2 ms (the stalls measured here),
+// but never more than half of it (a budget of a few milliseconds, as at a high time scale, is
+// otherwise all margin; its cycles then miss when the machine stalls, and say so).
+double default_safety_margin_ms(double budget_ms) noexcept;
+
+// The time the next commit will take, learned from the cycles before, so that growth stops
+// early enough for it however large the tree is. Committing can be linear in the tree
+// (PathSelector passes over all of it), so each cycle's commit time per tree edge is kept for
+// the last kWindow cycles, and a tree of n edges is given n times their 90th percentile: not
+// the maximum, for a stall during one commit would otherwise starve growth for kWindow cycles
+// (stalls are what the safety margin is for). Below kMinEdges a commit is mostly fixed costs,
+// so smaller trees count as kMinEdges.
+class CommitReserve {
+ public:
+  static constexpr std::size_t kWindow = 32;
+  static constexpr std::uint32_t kMinEdges = 256;
+
+  explicit CommitReserve(double prior_ns_per_edge) noexcept : ns_per_edge_(prior_ns_per_edge) {}
+  void note(std::int64_t commit_ns, std::uint32_t tree_edges) noexcept;
+  std::int64_t for_edges(std::uint32_t edges) const noexcept {
+    return static_cast<std::int64_t>(ns_per_edge_ * std::max(edges, kMinEdges));
+  }
+  double ns_per_edge() const noexcept { return ns_per_edge_; }
+
+ private:
+  std::array<double, kWindow> samples_{};
+  std::size_t count_ = 0;  // samples noted, up to kWindow
+  std::size_t next_ = 0;   // where the next one goes
+  double ns_per_edge_;
 };
 
 // Why a cycle started a fresh tree instead of keeping the last one.
@@ -60,6 +98,8 @@ struct CycleOutcome {
   std::int64_t retain_ns = 0;    // re-rooting, pruning and rescoring (or the restart)
   std::int64_t grow_ns = 0;      // anytime growth
   std::int64_t commit_ns = 0;    // choosing and extracting the plan after growth
+  // Real time: the room growth left for committing (CommitReserve) when it stopped.
+  std::int64_t commit_reserve_ns = 0;
   // The caller's work before the cycle (map updates, the vehicle's state, the choice of a
   // target), set by the caller: a cycle trace then accounts for the whole cycle.
   std::int64_t prepare_ns = 0;
@@ -116,7 +156,8 @@ class ReplanningCycle {
   // or, when it is shorter than T or there is none, where braking at its end leads.
   State next_plan_start() const noexcept;
 
-  // Runs one cycle, growing the tree until now_ns() >= deadline_ns - safety margin.
+  // Runs one cycle, growing the tree until now_ns() >= deadline_ns - safety margin - the
+  // commit's reserve for the tree's size.
   CycleOutcome run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns) noexcept;
   // The same, with the state the plan should lead to chosen by `choose_target` instead of the
   // planner's best_state() (exploration: PathSelector::select); it is then cut back to the
@@ -170,6 +211,7 @@ class ReplanningCycle {
   bool blocked_noted_ = false;
   BoundedVector<PlanStep> plan_;
   std::optional<State> resync_;
+  CommitReserve commit_reserve_;
 };
 
 extern template class ReplanningCycle<DdVelocity>;

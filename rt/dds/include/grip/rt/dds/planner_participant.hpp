@@ -56,7 +56,8 @@ struct PlannerParticipantConfig {
   VehicleKind robot = VehicleKind::kCar;
   double cycle_s = 0.05;    // T, in vehicle time
   double budget_s = 0.025;  // planning time per cycle, in vehicle time
-  double margin_s = -1.0;   // growth stops this long before the deadline; < 0: budget / 5, >= 2 ms
+  double margin_s = -1.0;   // growth stops this long before the deadline; < 0: wall-clock
+                            // default_safety_margin_ms(budget)
   platform::PolicyRequest policy = platform::PolicyRequest::kAuto;
   std::uint32_t max_edges = 0;  // 0: 400 per millisecond of wall-clock budget (lockstep: 4 cycles)
   // Lockstep (the vehicle's states ask for it: a simulator that waits for each plan): one cycle
