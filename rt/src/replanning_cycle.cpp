@@ -10,12 +10,13 @@
 namespace grip::rt {
 
 namespace {
-constexpr std::array<NamedValue<RestartCause>, 5> kRestartCauseNames{{
+constexpr std::array<NamedValue<RestartCause>, 6> kRestartCauseNames{{
     {RestartCause::kNone, "none"},
     {RestartCause::kVehicleOffPlans, "vehicle-off-plans"},
     {RestartCause::kNoPlan, "no-plan"},
     {RestartCause::kRootInCollision, "root-in-collision"},
     {RestartCause::kRetainRefused, "retain-refused"},
+    {RestartCause::kPoolFullWithoutPlan, "pool-full-without-plan"},
 }};
 }  // namespace
 
@@ -107,6 +108,7 @@ Status ReplanningCycle<V>::start(const State& q0, const GoalRegion& goal) {
   if (auto s = planner_.set_problem(q0, goal); !s) return s;
   set_goal(goal);
   committed_ = TreeState{};
+  full_without_plan_ = false;
   plan_.clear();
   return Ok{};
 }
@@ -140,8 +142,13 @@ TreeState ReplanningCycle<V>::next_root() const noexcept {
   // No plan: the vehicle brakes from the root, and once it rests there the next plan starts
   // where the tree does. Growing that tree on beats restarting it every cycle: a vehicle that
   // needs more than one cycle's growth to find a safe plan would otherwise never move again.
+  // Once that tree fills the pools without a plan it cannot grow on: a fresh one is sampled
+  // (a car at a time scale of 10 otherwise sat for minutes with a full tree and no plan).
   const TreeState root = planner_.root_state();
-  if (root.edge != kNoHandle && planner_.vehicle().is_stopped(plan_start())) return root;
+  if (root.edge != kNoHandle && planner_.vehicle().is_stopped(plan_start()) &&
+      !full_without_plan_) {
+    return root;
+  }
   return TreeState{};
 }
 
@@ -220,8 +227,11 @@ CycleOutcome ReplanningCycle<V>::run_growing(
                     : next_root.edge != kNoHandle
                         ? planner_.tree().edge_state(next_root.edge, next_root.index)
                         : predicted_state_without_plan();
-    out.restart_cause = resync_                       ? RestartCause::kVehicleOffPlans
-                        : next_root.edge == kNoHandle ? RestartCause::kNoPlan
+    out.restart_cause = resync_ ? RestartCause::kVehicleOffPlans
+                        : next_root.edge == kNoHandle
+                            ? (full_without_plan_ && planner_.vehicle().is_stopped(plan_start())
+                                   ? RestartCause::kPoolFullWithoutPlan
+                                   : RestartCause::kNoPlan)
                         : out.retain_status == RetainStatus::kRootInCollision
                             ? RestartCause::kRootInCollision
                             : RestartCause::kRetainRefused;
@@ -273,6 +283,7 @@ CycleOutcome ReplanningCycle<V>::run_growing(
   out.commit_ns = now_ns() - commit_start;
   commit_reserve_.note(out.commit_ns, planner_.tree().edge_count());
   out.plan_available = committed_.edge != kNoHandle;
+  full_without_plan_ = out.pool_exhausted && !out.plan_available;
   // The committed plan reaches the target only if it was not shortened for safety.
   const TreeState solution = planner_.best_state();
   out.solved = planner_.solved() && out.committed && candidate.edge == solution.edge &&

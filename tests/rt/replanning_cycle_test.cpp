@@ -256,6 +256,33 @@ TEST_F(ReplanningCycleTest, AVehicleRestingWithoutAPlanKeepsGrowingTheSameTree) 
   EXPECT_EQ(cycle->plan_start(), rest);
 }
 
+TEST_F(ReplanningCycleTest, ARestingTreeThatFillsThePoolsWithoutAPlanIsSampledAfresh) {
+  // GIVEN pools of 300 edges and a choice that commits nothing, so the vehicle rests at the
+  // root and the tree kept there fills the pools
+  PlannerConfig small;
+  small.max_edges = 300;
+  small.max_trajectories = 150;
+  cycle.emplace(ReplanningCycle<Car>::create(car, scene.grid, small, config).value());
+  ASSERT_TRUE(cycle->start(car.rest_state(scene.start_x_m, scene.start_y_m, 0.0),
+                           GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+  const auto nothing = [](const Planner<Car>&) { return TreeState{}; };
+  const auto racing = [this] { return clock.now += 1'000; };
+  int full_at = -1;
+  for (int i = 0; i < 20 && full_at < 0; ++i) {
+    const CycleOutcome out = cycle->run_for_edges(racing, 100, nothing);
+    ASSERT_FALSE(out.plan_available);
+    if (out.pool_exhausted) full_at = i;
+  }
+  ASSERT_GE(full_at, 0) << "the pools never filled";
+  // WHEN the next cycle runs THEN it starts a fresh tree, says why, and grows it
+  const CycleOutcome out = cycle->run_for_edges(racing, 100, nothing);
+  EXPECT_EQ(out.restart_cause, RestartCause::kPoolFullWithoutPlan);
+  EXPECT_EQ(restart_cause_name(out.restart_cause), "pool-full-without-plan");
+  EXPECT_EQ(out.retain_status, RetainStatus::kOk);
+  EXPECT_GT(out.edges_added, 0U);
+  EXPECT_EQ(cycle->plan_start(), car.rest_state(scene.start_x_m, scene.start_y_m, 0.0));
+}
+
 TEST_F(ReplanningCycleTest, ARestartSaysWhyTheTreeWasNotKept) {
   // Kept: no cause.
   for (int i = 0; i < 3; ++i) {

@@ -78,6 +78,9 @@ enum class RestartCause : std::uint8_t {
   kNoPlan,           // no committed plan covers T and the vehicle is not resting at the root
   kRootInCollision,  // the new map puts the chassis at the new root in collision
   kRetainRefused,    // retain() refused for another reason (retain_status says which)
+  // The vehicle rests at the root without a plan and the tree kept there filled the pools
+  // without holding one: growing it on is impossible, so a fresh tree is sampled.
+  kPoolFullWithoutPlan,
 };
 std::string_view restart_cause_name(RestartCause cause) noexcept;
 
@@ -206,7 +209,8 @@ class ReplanningCycle {
   bool goal_changed_ = true;    // since the last retainment or restart
   bool rho_adopted_ = false;    // rho toward the goal came with it (set_goal with a field)
   std::uint32_t cycles_since_rho_ = 0;
-  TreeState committed_;  // end of the committed plan in the tree; empty: braking
+  TreeState committed_;             // end of the committed plan in the tree; empty: braking
+  bool full_without_plan_ = false;  // the last cycle filled the pools and has no plan
   CellBox newly_blocked_;
   bool blocked_noted_ = false;
   BoundedVector<PlanStep> plan_;
