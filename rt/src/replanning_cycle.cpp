@@ -16,7 +16,7 @@ constexpr std::array<NamedValue<RestartCause>, 6> kRestartCauseNames{{
     {RestartCause::kNoPlan, "no-plan"},
     {RestartCause::kRootInCollision, "root-in-collision"},
     {RestartCause::kRetainRefused, "retain-refused"},
-    {RestartCause::kPoolFullWithoutPlan, "pool-full-without-plan"},
+    {RestartCause::kTreeFullWithoutPlan, "tree-full-without-plan"},
 }};
 }  // namespace
 
@@ -142,8 +142,10 @@ TreeState ReplanningCycle<V>::next_root() const noexcept {
   // No plan: the vehicle brakes from the root, and once it rests there the next plan starts
   // where the tree does. Growing that tree on beats restarting it every cycle: a vehicle that
   // needs more than one cycle's growth to find a safe plan would otherwise never move again.
-  // Once that tree fills the pools without a plan it cannot grow on: a fresh one is sampled
-  // (a car at a time scale of 10 otherwise sat for minutes with a full tree and no plan).
+  // Once that tree reaches its capacity without a plan (its pools, or the time a cycle has to
+  // retain and grow it) it cannot grow on, or only by pruning what scores worst, which in a
+  // dead end is the way out: a fresh one is sampled (a car at a time scale of 10 otherwise sat
+  // for minutes with a full tree and no plan).
   const TreeState root = planner_.root_state();
   if (root.edge != kNoHandle && planner_.vehicle().is_stopped(plan_start()) &&
       !full_without_plan_) {
@@ -230,7 +232,7 @@ CycleOutcome ReplanningCycle<V>::run_growing(
     out.restart_cause = resync_ ? RestartCause::kVehicleOffPlans
                         : next_root.edge == kNoHandle
                             ? (full_without_plan_ && planner_.vehicle().is_stopped(plan_start())
-                                   ? RestartCause::kPoolFullWithoutPlan
+                                   ? RestartCause::kTreeFullWithoutPlan
                                    : RestartCause::kNoPlan)
                         : out.retain_status == RetainStatus::kRootInCollision
                             ? RestartCause::kRootInCollision
@@ -283,7 +285,12 @@ CycleOutcome ReplanningCycle<V>::run_growing(
   out.commit_ns = now_ns() - commit_start;
   commit_reserve_.note(out.commit_ns, planner_.tree().edge_count());
   out.plan_available = committed_.edge != kNoHandle;
-  full_without_plan_ = out.pool_exhausted && !out.plan_available;
+  // The tree reached its capacity and still holds no plan: the pools, the share of them a
+  // retained tree may keep, or what the cycle's time allows (retaining it and reserving the
+  // commit left no time to grow it: a car at rest with 1,100 edges at a time scale of 10).
+  full_without_plan_ =
+      !out.plan_available && out.retain_status == RetainStatus::kOk &&
+      (out.pool_exhausted || planner_.last_retain().pruned_for_room > 0 || out.edges_added == 0);
   // The committed plan reaches the target only if it was not shortened for safety.
   const TreeState solution = planner_.best_state();
   out.solved = planner_.solved() && out.committed && candidate.edge == solution.edge &&

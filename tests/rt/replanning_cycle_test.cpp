@@ -256,31 +256,56 @@ TEST_F(ReplanningCycleTest, AVehicleRestingWithoutAPlanKeepsGrowingTheSameTree) 
   EXPECT_EQ(cycle->plan_start(), rest);
 }
 
-TEST_F(ReplanningCycleTest, ARestingTreeThatFillsThePoolsWithoutAPlanIsSampledAfresh) {
+TEST_F(ReplanningCycleTest, ARestingTreeAtItsCapacityWithoutAPlanIsSampledAfresh) {
   // GIVEN pools of 300 edges and a choice that commits nothing, so the vehicle rests at the
-  // root and the tree kept there fills the pools
+  // root and the tree kept there grows until it reaches its capacity
   PlannerConfig small;
   small.max_edges = 300;
   small.max_trajectories = 150;
   cycle.emplace(ReplanningCycle<Car>::create(car, scene.grid, small, config).value());
-  ASSERT_TRUE(cycle->start(car.rest_state(scene.start_x_m, scene.start_y_m, 0.0),
-                           GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+  const Car::State rest = car.rest_state(scene.start_x_m, scene.start_y_m, 0.0);
+  ASSERT_TRUE(cycle->start(rest, GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
   const auto nothing = [](const Planner<Car>&) { return TreeState{}; };
   const auto racing = [this] { return clock.now += 1'000; };
-  int full_at = -1;
-  for (int i = 0; i < 20 && full_at < 0; ++i) {
+  bool at_capacity = false;  // the last cycle filled the pools or pruned the tree for room
+  int restarts = 0;
+  for (int i = 0; i < 30; ++i) {
     const CycleOutcome out = cycle->run_for_edges(racing, 100, nothing);
     ASSERT_FALSE(out.plan_available);
-    if (out.pool_exhausted) full_at = i;
+    EXPECT_EQ(cycle->plan_start(), rest);
+    if (at_capacity) {
+      // THEN the cycle after starts a fresh tree, says why, and grows it
+      EXPECT_EQ(out.restart_cause, RestartCause::kTreeFullWithoutPlan) << "cycle " << i;
+      EXPECT_EQ(out.retain_status, RetainStatus::kOk);
+      EXPECT_GT(out.edges_added, 0U);
+      ++restarts;
+    } else {
+      // and until then the tree is kept and grows
+      EXPECT_FALSE(out.restarted()) << "cycle " << i;
+    }
+    at_capacity = out.pool_exhausted || cycle->planner().last_retain().pruned_for_room > 0 ||
+                  out.edges_added == 0;
   }
-  ASSERT_GE(full_at, 0) << "the pools never filled";
-  // WHEN the next cycle runs THEN it starts a fresh tree, says why, and grows it
-  const CycleOutcome out = cycle->run_for_edges(racing, 100, nothing);
-  EXPECT_EQ(out.restart_cause, RestartCause::kPoolFullWithoutPlan);
-  EXPECT_EQ(restart_cause_name(out.restart_cause), "pool-full-without-plan");
-  EXPECT_EQ(out.retain_status, RetainStatus::kOk);
-  EXPECT_GT(out.edges_added, 0U);
-  EXPECT_EQ(cycle->plan_start(), car.rest_state(scene.start_x_m, scene.start_y_m, 0.0));
+  EXPECT_GT(restarts, 0) << "the tree never reached its capacity";
+  EXPECT_EQ(restart_cause_name(RestartCause::kTreeFullWithoutPlan), "tree-full-without-plan");
+}
+
+TEST_F(ReplanningCycleTest, ARestingTreeLeftNoTimeToGrowWithoutAPlanIsSampledAfresh) {
+  // GIVEN a vehicle resting at the root without a plan and a tree kept there that grew
+  const auto nothing = [](const Planner<Car>&) { return TreeState{}; };
+  const auto racing = [this] { return clock.now += 1'000; };
+  ASSERT_FALSE(cycle->run_for_edges(racing, 200, nothing).restarted());
+  // WHEN a cycle has no time left to grow it (its deadline is within the margin)
+  const CycleOutcome starved =
+      cycle->run([this] { return clock.read(); }, clock.now, nothing, [] {});
+  EXPECT_FALSE(starved.restarted());
+  EXPECT_EQ(starved.edges_added, 0U);
+  EXPECT_FALSE(starved.plan_available);
+  // THEN the next cycle starts afresh rather than retain a tree it cannot grow
+  const CycleOutcome next = cycle->run_for_edges(racing, 200, nothing);
+  EXPECT_EQ(next.restart_cause, RestartCause::kTreeFullWithoutPlan);
+  EXPECT_EQ(next.edges_retained, 0U);
+  EXPECT_GT(next.edges_added, 0U);
 }
 
 TEST_F(ReplanningCycleTest, ARestartSaysWhyTheTreeWasNotKept) {

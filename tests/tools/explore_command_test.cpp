@@ -116,7 +116,7 @@ void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles)
     // A restart says why; a kept tree has no cause.
     EXPECT_TRUE(cause_name == "none" || cause_name == "vehicle-off-plans" ||
                 cause_name == "no-plan" || cause_name == "root-in-collision" ||
-                cause_name == "retain-refused" || cause_name == "pool-full-without-plan")
+                cause_name == "retain-refused" || cause_name == "tree-full-without-plan")
         << line;
     EXPECT_EQ(v[restarted] == 1.0, cause_name != "none") << line;
     EXPECT_EQ(v[cycle], static_cast<double>(rows)) << line;

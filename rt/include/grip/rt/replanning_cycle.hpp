@@ -78,9 +78,10 @@ enum class RestartCause : std::uint8_t {
   kNoPlan,           // no committed plan covers T and the vehicle is not resting at the root
   kRootInCollision,  // the new map puts the chassis at the new root in collision
   kRetainRefused,    // retain() refused for another reason (retain_status says which)
-  // The vehicle rests at the root without a plan and the tree kept there filled the pools
-  // without holding one: growing it on is impossible, so a fresh tree is sampled.
-  kPoolFullWithoutPlan,
+  // The vehicle rests at the root without a plan and the tree kept there reached its capacity
+  // (the pools, the share a retained tree may keep, or the cycle's time: it grew no edge)
+  // without holding one: a fresh tree is sampled.
+  kTreeFullWithoutPlan,
 };
 std::string_view restart_cause_name(RestartCause cause) noexcept;
 
@@ -210,7 +211,7 @@ class ReplanningCycle {
   bool rho_adopted_ = false;    // rho toward the goal came with it (set_goal with a field)
   std::uint32_t cycles_since_rho_ = 0;
   TreeState committed_;             // end of the committed plan in the tree; empty: braking
-  bool full_without_plan_ = false;  // the last cycle filled the pools and has no plan
+  bool full_without_plan_ = false;  // the last cycle reached the tree's capacity, no plan
   CellBox newly_blocked_;
   bool blocked_noted_ = false;
   BoundedVector<PlanStep> plan_;
