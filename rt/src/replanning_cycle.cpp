@@ -28,15 +28,15 @@ double default_safety_margin_ms(double budget_ms) noexcept {
   return std::min(std::max(2.0, budget_ms / 5.0), budget_ms / 2.0);
 }
 
-void CommitReserve::note(std::int64_t commit_ns, std::uint32_t tree_edges) noexcept {
-  samples_[next_] = static_cast<double>(commit_ns) / std::max(tree_edges, kMinEdges);
+void CommitReserve::note(std::int64_t commit_ns) noexcept {
+  samples_[next_] = commit_ns;
   next_ = (next_ + 1) % kWindow;
   count_ = std::min(count_ + 1, kWindow);
-  std::array<double, kWindow> sorted = samples_;
+  std::array<std::int64_t, kWindow> sorted = samples_;
   const auto end = sorted.begin() + static_cast<std::ptrdiff_t>(count_);
   const auto p75 = sorted.begin() + static_cast<std::ptrdiff_t>(count_ - 1 - count_ / 4);
   std::nth_element(sorted.begin(), p75, end);
-  ns_per_edge_ = *p75;
+  reserve_ns_ = *p75;
 }
 
 template <VehicleModel V>
@@ -56,9 +56,9 @@ Result<ReplanningCycle<V>> ReplanningCycle<V>::create(const V& vehicle, const Oc
   if (config.safety_margin_ns < 0 || config.max_plan_pieces == 0) {
     return invalid_argument("cycle: safety margin must be >= 0 and max_plan_pieces > 0");
   }
-  if (!std::isfinite(config.commit_ns_per_edge_prior) || config.commit_ns_per_edge_prior < 0.0) {
-    return invalid_argument("cycle: commit_ns_per_edge_prior must be >= 0 (got " +
-                            std::to_string(config.commit_ns_per_edge_prior) + ")");
+  if (config.commit_reserve_prior_ns < 0) {
+    return invalid_argument("cycle: commit_reserve_prior_ns must be >= 0 (got " +
+                            std::to_string(config.commit_reserve_prior_ns) + ")");
   }
   planner_config.steps_per_record = 1;  // every checked state is a recorded one (retainment)
   planner_config.stop_at_goal = false;  // once solved, cycles improve the solution
@@ -81,7 +81,7 @@ ReplanningCycle<V>::ReplanningCycle(Planner<V> planner, const CycleConfig& confi
       cycle_steps_(cycle_steps),
       goal_cells_(planner_.checker().grid().cell_count()),
       plan_(config.max_plan_pieces),
-      commit_reserve_(config.commit_ns_per_edge_prior) {}
+      commit_reserve_(config.commit_reserve_prior_ns) {}
 
 template <VehicleModel V>
 void ReplanningCycle<V>::set_goal(GoalCells goal) noexcept {
@@ -172,15 +172,10 @@ template <VehicleModel V>
 CycleOutcome ReplanningCycle<V>::run(FunctionRef<std::int64_t()> now_ns, std::int64_t deadline_ns,
                                      FunctionRef<TreeState(const Planner<V>&)> choose_target,
                                      FunctionRef<void()> plan_chosen) noexcept {
-  const std::int64_t stop_at = deadline_ns - config_.safety_margin_ns;
-  std::int64_t reserve = 0;
+  const std::int64_t reserve = commit_reserve_.ns();
+  const std::int64_t stop_at = deadline_ns - config_.safety_margin_ns - reserve;
   CycleOutcome out = run_growing(
-      now_ns,
-      [&] {
-        reserve = commit_reserve_.for_edges(planner_.tree().edge_count());
-        return now_ns() >= stop_at - reserve;
-      },
-      choose_target, plan_chosen);
+      now_ns, [&] { return now_ns() >= stop_at; }, choose_target, plan_chosen);
   out.commit_reserve_ns = reserve;
   return out;
 }
@@ -283,7 +278,7 @@ CycleOutcome ReplanningCycle<V>::run_growing(
     plan_.clear();
   }
   out.commit_ns = now_ns() - commit_start;
-  commit_reserve_.note(out.commit_ns, planner_.tree().edge_count());
+  commit_reserve_.note(out.commit_ns);
   out.plan_available = committed_.edge != kNoHandle;
   // The tree reached its capacity and still holds no plan: the pools, the share of them a
   // retained tree may keep, or what the cycle's time allows (retaining it and reserving the

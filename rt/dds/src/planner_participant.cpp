@@ -1054,11 +1054,13 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
         " ms of wall clock) leaves no time to grow the tree after a margin of " +
         std::to_string(margin_ms) + " ms");
   }
-  // Exploring, the plan is chosen by a pass over the whole tree (PathSelector) after growth;
-  // the cycle learns what that costs, and starts from 1 us per edge: with dd-vel's top-speed
-  // controls most states see target cells, and committing took 0.65 us per edge median, 0.9
-  // at the 90th percentile (two real-time runs on two cores).
-  if (explore) cycle_config.commit_ns_per_edge_prior = 1000.0;
+  // Exploring, committing chooses the plan by a pass over the whole tree (PathSelector); the
+  // cycle learns what committing costs, and until it has measured one, takes 1 us per pool
+  // edge (the reserve of the sessions before: committing took 2 to 3 ms at time scale 2).
+  if (explore) {
+    cycle_config.commit_reserve_prior_ns =
+        static_cast<std::int64_t>(planner_config.max_edges) * 1'000;
+  }
   cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
   // Exploring, rho comes with each target (ExplorationTarget::rho); in real time the target
   // thread takes a cycle, so the planner's own refresh is only a fallback for a late target.
