@@ -34,9 +34,9 @@ void CommitReserve::note(std::int64_t commit_ns) noexcept {
   count_ = std::min(count_ + 1, kWindow);
   std::array<std::int64_t, kWindow> sorted = samples_;
   const auto end = sorted.begin() + static_cast<std::ptrdiff_t>(count_);
-  const auto p75 = sorted.begin() + static_cast<std::ptrdiff_t>(count_ - 1 - count_ / 4);
-  std::nth_element(sorted.begin(), p75, end);
-  reserve_ns_ = *p75;
+  const auto p90 = sorted.begin() + static_cast<std::ptrdiff_t>(count_ - 1 - count_ / 10);
+  std::nth_element(sorted.begin(), p90, end);
+  reserve_ns_ = *p90;
 }
 
 template <VehicleModel V>

@@ -98,14 +98,15 @@ TEST_F(ReplanningCycleTest, GrowthLeavesRoomForTheCommitTimeItHasMeasured) {
   }
 }
 
-TEST(CommitReserve, IsThePriorUntilMeasuredThenThe75thPercentileOfRecentCommits) {
+TEST(CommitReserve, IsThePriorUntilMeasuredThenThe90thPercentileOfRecentCommits) {
   CommitReserve reserve(1'000'000);
   EXPECT_EQ(reserve.ns(), 1'000'000);
   reserve.note(600'000);  // the first measurement replaces the prior
   EXPECT_EQ(reserve.ns(), 600'000);
-  // A window of 600 us commits whose last quarter stalled: the stalls are not the reserve.
-  // One more stall (the oldest sample, a fast one, goes) and the percentile reaches them.
-  constexpr std::size_t kStalls = CommitReserve::kWindow / 4;
+  // A window of 600 us commits whose last three stalled (under a tenth of 32): the stalls are
+  // not the reserve. One more stall (the oldest sample, a fast one, goes) and the percentile
+  // reaches them.
+  constexpr std::size_t kStalls = CommitReserve::kWindow / 10;
   for (std::size_t i = 0; i < CommitReserve::kWindow; ++i) {
     reserve.note(i >= CommitReserve::kWindow - kStalls ? 9'000'000 : 600'000);
   }

@@ -22,10 +22,10 @@ Result<CycleTrace> CycleTrace::open(const std::string& path) {
   }
   // Times in microseconds; release_ms from the first traced cycle's release.
   std::fputs(
-      "cycle,release_ms,wake_us,prepare_us,retain_us,grow_us,commit_us,commit_reserve_us,compute_"
-      "us,lateness_us,"
-      "missed,skipped,restarted,committed,kept_previous,plan_available,pool_exhausted,edges_added,"
-      "edges_retained,tree_edges,plan_duration_s,retain_status,restart_cause\n",
+      "cycle,release_ms,wake_us,prepare_us,retain_us,grow_us,commit_us,commit_reserve_us,"
+      "compute_us,lateness_us,missed,skipped,restarted,committed,kept_previous,"
+      "plan_available,pool_exhausted,edges_added,edges_retained,tree_edges,plan_duration_s,"
+      "retain_status,restart_cause\n",
       file);
   return CycleTrace(path, file);
 }

@@ -10,7 +10,6 @@
 //      ends in a collision-free contingency by construction.
 // Allocation-free after create(); never throws.
 
-#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -49,7 +48,7 @@ double default_safety_margin_ms(double budget_ms) noexcept;
 // early enough for it. Exploration's commit (the path selector's pass over the tree, then the
 // lazy safety checks back along the chosen path) took 2.1 to 2.7 ms median whether the tree had
 // 300 or 4,000 edges (a car at time scale 2), so it is not scaled with the tree: the reserve
-// is the 75th percentile of the last kWindow commits. A percentile, not the maximum: a stall
+// is the 90th percentile of the last kWindow commits. A percentile, not the maximum: a stall
 // during one commit would otherwise starve growth for kWindow cycles (stalls are what the
 // safety margin is for).
 class CommitReserve {
