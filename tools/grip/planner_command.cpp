@@ -217,9 +217,8 @@ void register_planner_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--budget-ms", o->budget_ms, "Planning time per cycle in vehicle time [ms]")
       ->capture_default_str();
-  cmd->add_option(
-      "--margin-ms", o->margin_ms,
-      "Growth stops this long before the deadline [ms] (default: budget/5, >= 2, <= budget/2)");
+  cmd->add_option("--margin-ms", o->margin_ms,
+                  "Growth stops this long before the deadline [ms] (default: budget/5)");
   cmd->add_option("--policy", o->policy, "auto, deadline, fifo or other")->capture_default_str();
   cmd->add_option("--max-edges", o->max_edges, "Edge pool (default: 400 per ms of budget)");
   cmd->add_option("--lockstep-edges", o->lockstep_edges,

@@ -39,9 +39,11 @@ struct CycleConfig {
   std::uint32_t rho_refresh_cycles = 1;
 };
 
-// A safety margin for a cycle's budget: a fifth of it, at least 2 ms (the stalls measured here),
-// but never more than half of it (a budget of a few milliseconds, as at a high time scale, is
-// otherwise all margin; its cycles then miss when the machine stalls, and say so).
+// A safety margin for a cycle's budget: a fifth of it, for the caller's work after the cycle and
+// the smaller delays of a shared machine. The commit has its own reserve (CommitReserve). No
+// floor of a few milliseconds for the VM's stalls: they last 4 to 40 ms here, more than any
+// margin a short budget (2.5 ms at time scale 10) could spare, and a floor of 2 ms left such a
+// budget no time to grow the tree; a stalled cycle misses, and says so.
 double default_safety_margin_ms(double budget_ms) noexcept;
 
 // The time the next commit will take, learned from the cycles before, so that growth stops
