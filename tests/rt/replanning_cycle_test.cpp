@@ -256,7 +256,7 @@ TEST_F(ReplanningCycleTest, ARestingTreeAtItsCapacityWithoutAPlanIsSampledAfresh
   ASSERT_TRUE(cycle->start(rest, GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
   const auto nothing = [](const Planner<Car>&) { return TreeState{}; };
   const auto racing = [this] { return clock.now += 1'000; };
-  bool at_capacity = false;  // the last cycle filled the pools or pruned the tree for room
+  bool at_capacity = false;  // the last cycle filled the pools, pruned for room or grew nothing
   int restarts = 0;
   for (int i = 0; i < 30; ++i) {
     const CycleOutcome out = cycle->run_for_edges(racing, 100, nothing);
