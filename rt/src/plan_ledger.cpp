@@ -90,13 +90,11 @@ std::optional<typename PlanLedger<V>::Forecast> PlanLedger<V>::forecast(
     while (t < tick_end) {
       if (next < queued && queue[next]->start_ns <= t) {
         const Entry& e = *queue[next++];
-        if (e.steps.empty()) {
-          if (mode == Mode::kExecuting) mode = contingency_mode(vehicle_, q);
-        } else if (states_match(q, e.start)) {
+        if (!e.steps.empty() && states_match(q, e.start)) {
           current = &e;
           piece = 0;
           mode = Mode::kExecuting;
-        }  // else refused: the vehicle goes on as it was
+        }  // else an empty plan, or one refused: the vehicle goes on as it was
       }
       if (mode == Mode::kExecuting && piece == current->steps.size()) {
         mode = contingency_mode(vehicle_, q);
@@ -119,20 +117,8 @@ std::optional<typename PlanLedger<V>::Forecast> PlanLedger<V>::forecast(
   // A plan whose last piece ended exactly now has run out: the vehicle brakes from here on.
   if (mode == Mode::kExecuting && piece < current->steps.size()) {
     f.cycle = current->cycle;
-    f.piece = static_cast<std::uint32_t>(piece);
-    f.left_in_piece_ns = current->end_ns[piece] - until;
   }
   return f;
-}
-
-template <VehicleModel V>
-std::uint32_t PlanLedger<V>::remainder(const Forecast& f, std::span<PlanStep> out) const noexcept {
-  const Entry* e = f.cycle != 0 ? find(f.cycle) : nullptr;
-  if (e == nullptr || f.piece >= e->steps.size() || out.empty()) return 0;
-  const auto n = static_cast<std::uint32_t>(std::min(out.size(), e->steps.size() - f.piece));
-  std::copy_n(e->steps.begin() + f.piece, n, out.begin());
-  out[0].duration_s = static_cast<double>(f.left_in_piece_ns) / kNsPerS;
-  return n;
 }
 
 template class PlanLedger<DdVelocity>;

@@ -153,7 +153,13 @@ TreeState ReplanningCycle<V>::next_root() const noexcept {
 }
 
 template <VehicleModel V>
+void ReplanningCycle<V>::resynchronise(const State& q) noexcept {
+  resync_ = q;
+}
+
+template <VehicleModel V>
 typename ReplanningCycle<V>::State ReplanningCycle<V>::next_plan_start() const noexcept {
+  if (resync_) return *resync_;
   const TreeState root = next_root();
   if (root.edge == kNoHandle) return predicted_state_without_plan();
   return planner_.tree().edge_state(root.edge, root.index);

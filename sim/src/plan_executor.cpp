@@ -133,7 +133,7 @@ PlanVerdict PlanExecutor<V>::submit(std::span<const PlanStep> steps, std::int64_
 }
 
 template <VehicleModel V>
-PlanVerdict PlanExecutor<V>::submit_brake(std::int64_t start_time_ns) noexcept {
+PlanVerdict PlanExecutor<V>::submit_empty(std::int64_t start_time_ns) noexcept {
   if (start_time_ns < now_ns_) {
     ++stats_.plans_rejected;
     return PlanVerdict::kStartsInThePast;
@@ -197,9 +197,6 @@ void PlanExecutor<V>::begin_contingency(ContingencyCause cause) noexcept {
     case ContingencyCause::kAbandoned:
       ++stats_.plans_abandoned;
       break;
-    case ContingencyCause::kBrakePlan:
-      ++stats_.ended_by_brake_plan;
-      break;
   }
   mode_ = contingency_mode(vehicle_, state_);
   if (mode_ == ExecutorMode::kAtRest) control_ = Control::Zero();
@@ -212,11 +209,7 @@ void PlanExecutor<V>::start_queued_plan() noexcept {
             queue_.begin());
   --queue_size_;
   const PlanSlot& slot = slots_[slot_index];
-  if (slot.steps.empty()) {
-    // A brake plan: the plan being executed ends here; an idle or braking vehicle carries on.
-    if (mode_ == ExecutorMode::kExecuting) begin_contingency(ContingencyCause::kBrakePlan);
-    return;
-  }
+  if (slot.steps.empty()) return;  // an empty plan: the vehicle goes on as it was
   bool mismatch = false;
   if (slot.predicted_start) {
     const State& p = *slot.predicted_start;

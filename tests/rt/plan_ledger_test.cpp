@@ -29,7 +29,6 @@ TEST_F(PlanLedgerTest, AVehicleOnAPlanIsForecastAlongIt) {
   ASSERT_TRUE(f.has_value());
   EXPECT_NEAR(f->state[0], 2.5, 1e-12);
   EXPECT_EQ(f->cycle, 1U);
-  EXPECT_EQ(f->left_in_piece_ns, 500 * static_cast<std::int64_t>(kMs));
   const auto after = ledger.forecast(robot.rest_state(1.5, 1.0, 0.0), 500 * kMs, 1, 3000 * kMs);
   ASSERT_TRUE(after.has_value());
   EXPECT_NEAR(after->state[0], 3.0, 1e-12);
@@ -54,16 +53,24 @@ TEST_F(PlanLedgerTest, APlanNotStartingWhereTheVehicleWillBeIsRefused) {
   EXPECT_EQ(g->cycle, 3U);
 }
 
-TEST_F(PlanLedgerTest, ABrakePlanEndsThePlanAndALaterPlanSupersedesQueuedOnes) {
+TEST_F(PlanLedgerTest, AnEmptyPlanSupersedesQueuedPlansAndLeavesTheExecutedOneRunning) {
   ledger.record(1, 0, origin, std::vector<PlanStep>{piece(1.0, 1.0, 4.0)});
+  // Plan 2 would turn on the spot from 2 s, where plan 1 puts the vehicle.
   ledger.record(2, 2000 * kMs, robot.rest_state(3.0, 1.0, 0.0),
                 std::vector<PlanStep>{piece(1.0, -1.0, 1.0)});
-  ledger.record(3, 1000 * kMs, origin, {});  // brake from 1 s: supersedes plan 2
+  const auto turning = ledger.forecast(origin, 0, 1, 2500 * kMs);
+  ASSERT_TRUE(turning.has_value());
+  EXPECT_NEAR(turning->state[0], 3.0, 1e-12);
+  EXPECT_EQ(turning->cycle, 2U);
+  ledger.record(3, 1000 * kMs, origin, {});  // empty from 1 s: supersedes plan 2
   const auto f = ledger.forecast(origin, 0, 1, 3000 * kMs);
   ASSERT_TRUE(f.has_value());
-  // A velocity-controlled robot stops at once: it rests where it was at 1 s.
-  EXPECT_NEAR(f->state[0], 2.0, 1e-12);
-  EXPECT_EQ(f->cycle, 0U);
+  EXPECT_NEAR(f->state[0], 4.0, 1e-12);  // still on plan 1
+  EXPECT_EQ(f->cycle, 1U);
+  const auto after = ledger.forecast(origin, 0, 1, 5000 * kMs);
+  ASSERT_TRUE(after.has_value());
+  EXPECT_NEAR(after->state[0], 5.0, 1e-12);  // plan 1 ran out at 4 s: at rest there
+  EXPECT_EQ(after->cycle, 0U);
 }
 
 TEST_F(PlanLedgerTest, APlanOlderThanTheLedgerGivesNoForecast) {
@@ -78,25 +85,6 @@ TEST_F(PlanLedgerTest, APlanOlderThanTheLedgerGivesNoForecast) {
   const auto f = empty.forecast(origin, 110 * kMs, 0, 500 * kMs);
   ASSERT_TRUE(f.has_value());
   EXPECT_EQ(f->state, origin);
-}
-
-TEST_F(PlanLedgerTest, TheRemainderOfAPlanIsItsRestFromTheForecastOn) {
-  const std::vector<PlanStep> plan{piece(1.0, 1.0, 0.5), piece(0.5, 1.0, 0.75),
-                                   piece(1.0, 0.5, 0.25)};
-  ledger.record(4, 1000 * kMs, origin, plan);
-  const auto f = ledger.forecast(origin, 1000 * kMs, 0, 1800 * kMs);
-  ASSERT_TRUE(f.has_value());
-  ASSERT_EQ(f->cycle, 4U);
-  std::array<PlanStep, 8> rest{};
-  ASSERT_EQ(ledger.remainder(*f, rest), 2U);
-  EXPECT_DOUBLE_EQ(rest[0].duration_s, 0.45);  // of the second piece, 0.3 s have passed
-  EXPECT_EQ(rest[0].control, plan[1].control);
-  EXPECT_EQ(rest[1].duration_s, plan[2].duration_s);
-  EXPECT_EQ(rest[1].control, plan[2].control);
-  // Nothing executing: no remainder.
-  const auto idle = ledger.forecast(origin, 3000 * kMs, 0, 3100 * kMs);
-  ASSERT_TRUE(idle.has_value());
-  EXPECT_EQ(ledger.remainder(*idle, rest), 0U);
 }
 
 }  // namespace

@@ -130,20 +130,32 @@ TEST_F(DdVelocityExecutorTest, APlanSubmittedAtTheInstantThePreviousEndedTakesOv
   EXPECT_NEAR(executor.state()[0], 1.0 + 1.0 + 1.0, 1e-12);
 }
 
-TEST_F(DdVelocityExecutorTest, ABrakePlanEndsTheExecutedPlanAtItsStartAndALaterPlanStillRuns) {
+TEST_F(DdVelocityExecutorTest, AnEmptyPlanDropsQueuedPlansButNeverCutsTheExecutedOneShort) {
+  // Braking where a plan did not end was never checked: the vehicle drives its plan to the end.
   ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 3.0)}, 0),
             PlanVerdict::kAccepted);
-  ASSERT_EQ(executor.submit_brake(kSecond), PlanVerdict::kAccepted);
-  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(0.5, 0.5, 1.0)}, 2 * kSecond),
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(-0.2, 0.2, 1.0)}, 2 * kSecond),
             PlanVerdict::kAccepted);
-  executor.run_until(kSecond * 3 / 2);
+  ASSERT_EQ(executor.submit_empty(kSecond), PlanVerdict::kAccepted);  // drops the turn at 2 s
+  EXPECT_EQ(executor.stats().plans_superseded, 1U);
+  executor.run_until(kSecond * 5 / 2);
+  EXPECT_EQ(executor.mode(), ExecutorMode::kExecuting);
+  EXPECT_EQ(executor.stats().contingencies, 0U);
+  EXPECT_NEAR(executor.state()[0], 3.5, 1e-12);
+  EXPECT_NEAR(executor.state()[2], 0.0, 1e-12);  // it did not turn
+  executor.run_until(4 * kSecond);
   EXPECT_EQ(executor.mode(), ExecutorMode::kAtRest);
-  EXPECT_EQ(executor.stats().ended_by_brake_plan, 1U);
-  EXPECT_NEAR(executor.state()[0], 2.0, 1e-12);  // stopped where the brake plan started
-  executor.run_until(3 * kSecond);
-  EXPECT_NEAR(executor.state()[0], 2.5, 1e-12);  // the plan queued behind it ran
+  EXPECT_EQ(executor.stats().plans_ran_out, 1U);
+  EXPECT_NEAR(executor.state()[0], 4.0, 1e-12);  // braked where the plan ended
+  EXPECT_EQ(executor.stats().plans_started, 1U);
+  // A plan sent after an empty one starts as usual.
+  ASSERT_EQ(executor.submit_empty(5 * kSecond), PlanVerdict::kAccepted);
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(0.5, 0.5, 1.0)}, 6 * kSecond),
+            PlanVerdict::kAccepted);
+  executor.run_until(7 * kSecond);
+  EXPECT_NEAR(executor.state()[0], 4.5, 1e-12);
   EXPECT_EQ(executor.stats().plans_started, 2U);
-  EXPECT_EQ(executor.submit_brake(kSecond), PlanVerdict::kStartsInThePast);
+  EXPECT_EQ(executor.submit_empty(kSecond), PlanVerdict::kStartsInThePast);
 }
 
 TEST_F(DdVelocityExecutorTest, ALaterSubmittedPlanSupersedesQueuedPlansStartingAtOrAfterIt) {
@@ -235,8 +247,8 @@ TEST(PlanExecutorRefusalTest, ARestingVehicleStaysAtRestWhenItsPlanIsRefused) {
 }
 
 // The planner's forecast of the controller (rt::PlanLedger) against the controller itself:
-// plans that match and start inside a tick, a refused plan, a brake plan, a plan started from a
-// braking vehicle. The forecast from a state measured part way must land exactly where the
+// plans that match and start inside a tick, a refused plan, an empty plan, a plan started from
+// a braking vehicle. The forecast from a state measured part way must land exactly where the
 // executor does.
 TEST(PlanExecutorForecastTest, ThePlannersForecastLandsExactlyWhereTheControllerDoes) {
   const DdAcceleration robot = DdAcceleration::create(DdAccelerationParams{}).value();
@@ -248,7 +260,7 @@ TEST(PlanExecutorForecastTest, ThePlannersForecastLandsExactlyWhereTheController
                         const std::vector<PlanStep>& steps) {
     ledger.record(cycle, static_cast<std::uint64_t>(at_ns), from, steps);
     const PlanVerdict v =
-        steps.empty() ? executor.submit_brake(at_ns) : executor.submit(steps, at_ns, from, cycle);
+        steps.empty() ? executor.submit_empty(at_ns) : executor.submit(steps, at_ns, from, cycle);
     ASSERT_EQ(v, PlanVerdict::kAccepted);
   };
   const auto forecast_from = [&](const DdAcceleration::State& q, std::int64_t stamp,
@@ -268,13 +280,18 @@ TEST(PlanExecutorForecastTest, ThePlannersForecastLandsExactlyWhereTheController
   EXPECT_EQ(at_525.cycle, 1U);
   send(2, 525 * kMs, at_525.state, {piece(0.3, 0.6, 0.4), piece(0.6, 0.6, 2.0)});
   send(3, 750 * kMs, measured, {piece(0.6, -0.6, 1.0)});  // not where the vehicle will be
-  send(4, 1200 * kMs, start, {});                         // brake
+  send(4, 1200 * kMs, start, {});                         // empty: plan 2 goes on
   const auto at_1600 = forecast_from(measured, 300 * kMs, 1, 1600 * kMs);
-  EXPECT_EQ(at_1600.cycle, 0U) << "braking";
-  send(5, 1600 * kMs, at_1600.state, {piece(0.6, 0.0, 0.5)});
+  EXPECT_EQ(at_1600.cycle, 2U) << "an empty plan cuts no plan short";
+  // Plan 2 runs out at 2.925 s: plan 5 starts from the braking vehicle.
+  const auto at_3000 = forecast_from(measured, 300 * kMs, 1, 3000 * kMs);
+  EXPECT_EQ(at_3000.cycle, 0U) << "braking";
+  ASSERT_FALSE(robot.is_stopped(at_3000.state));
+  send(5, 3000 * kMs, at_3000.state, {piece(0.6, 0.0, 0.5)});
 
   std::vector<std::pair<std::int64_t, DdAcceleration::State>> truth_at;
-  for (std::int64_t t : {525 * kMs, 800 * kMs, 1000 * kMs, 1600 * kMs, 1850 * kMs, 2400 * kMs}) {
+  for (std::int64_t t : {525 * kMs, 800 * kMs, 1000 * kMs, 1600 * kMs, 2950 * kMs, 3250 * kMs,
+                         3800 * kMs}) {
     executor.run_until(t);
     truth_at.emplace_back(executor.now_ns(), executor.state());
   }
@@ -287,8 +304,9 @@ TEST(PlanExecutorForecastTest, ThePlannersForecastLandsExactlyWhereTheController
     }
   }
   EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 1000 * kMs).cycle, 2U);
-  EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 1850 * kMs).cycle, 5U);
-  EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 2400 * kMs).cycle, 0U) << "plan 5 ran out";
+  EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 1600 * kMs).cycle, 2U);
+  EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 3250 * kMs).cycle, 5U);
+  EXPECT_EQ(forecast_from(measured, 300 * kMs, 1, 3800 * kMs).cycle, 0U) << "plan 5 ran out";
 }
 
 TEST(PlanExecutorCollisionTest, DrivingIntoAWallIsOneCollisionWithItsTimeAndPlace) {

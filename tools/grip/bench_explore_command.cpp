@@ -300,7 +300,7 @@ int run_bench(const BenchExploreOptions& o) {
       if (!r.report.is_null()) {
         for (const char* key : {"result", "coverage", "collisions", "sim_time_s", "wall_time_s",
                                 "mean_speed_fraction", "distance_m", "retraced_fraction",
-                                "brake_plans", "start_mismatches", "cycles", "deadline_misses"}) {
+                                "empty_plans", "start_mismatches", "cycles", "deadline_misses"}) {
           if (r.report.contains(key)) e[key] = r.report.at(key);
         }
       }

@@ -124,7 +124,7 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
   j["plans_received"] = r.plans_received;
   j["plans_rejected"] = r.plans_rejected;
   j["contingency_stops"] = r.contingency_stops;
-  j["brake_plans"] = r.brake_plans;
+  j["empty_plans"] = r.empty_plans;
   j["start_mismatches"] = r.start_mismatches;
   j["plans_dropped"] = r.plans_dropped;
   j["max_start_error_m"] = r.max_start_error_m;
@@ -215,7 +215,7 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
             << " of it retraced), mean speed " << std::setprecision(2) << r.mean_speed_fraction
             << " of top\n  planner cycles " << r.cycles << ", deadline misses " << r.deadline_misses
             << ", plans " << r.plans_received << " (rejected " << r.plans_rejected << ", "
-            << r.brake_plans << " to brake, " << r.start_mismatches
+            << r.empty_plans << " empty, " << r.start_mismatches
             << " refused: not starting where the vehicle was"
             << (r.plans_dropped > 0 ? ", " + std::to_string(r.plans_dropped) + " dropped on purpose"
                                     : "")

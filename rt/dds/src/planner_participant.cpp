@@ -232,7 +232,8 @@ class PlannerParticipantFor final : public PlannerParticipant {
   void request_frontier_target() noexcept;
   void apply_frontier_target() noexcept;
   void note_vehicle_state(const StateSample& measured) noexcept;
-  void check_vehicle_follows(const StateSample& measured) noexcept;
+  void check_vehicle_follows() noexcept;
+  std::optional<typename PlanLedger<V>::Forecast> forecast(std::uint64_t until_ns) const noexcept;
   PlannerParticipantReport final_report(PlannerParticipantReport report);
   std::string progress_line(const PlannerParticipantReport& report) const;
   static State state_of(const StateSample& sample) noexcept {
@@ -318,13 +319,11 @@ class PlannerParticipantFor final : public PlannerParticipant {
   std::uint64_t state_sequence_ = 0;
   std::uint64_t plan_start_ns_ = 0;  // vehicle time at which this cycle's plan starts
   std::uint64_t last_state_stamp_ns_ = 0;
+  StateSample last_state_{};  // the last measured state (valid once last_state_stamp_ns_ != 0)
   std::uint64_t resyncs_ = 0;
-  // The plans sent, to forecast where the vehicle will be (check_vehicle_follows).
+  // The plans sent, to forecast where the vehicle will be (check_vehicle_follows, and where
+  // the plan it goes on with leads when a cycle has none).
   std::optional<PlanLedger<V>> ledger_;
-  // This cycle's tree was started afresh where the vehicle, off its plans, will be: the
-  // forecast, with the plan it will then be executing.
-  std::optional<typename PlanLedger<V>::Forecast> off_plans_;
-  std::vector<PlanStep> continuation_;  // kMaxPlanSteps pieces, sized at start-up
   std::uint64_t cycles_ = 0;
   std::uint64_t misses_ = 0;          // cycles that ended after their deadline, or were skipped
   std::int64_t last_release_ns_ = 0;  // real time: the release of the last cycle run
@@ -654,7 +653,7 @@ CycleOutcome PlannerParticipantFor<V>::cycle_body(std::int64_t release_ns,
   const bool new_state = states_->update();
   if (new_state) note_vehicle_state(states_->read_buffer());
   chain_plan_start(release_ns);
-  if (new_state) check_vehicle_follows(states_->read_buffer());
+  if (new_state) check_vehicle_follows();
   return plan_cycle(start, changes, deadline_ns);
 }
 
@@ -719,22 +718,15 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, const MapC
 
   {
     // Planned during (t[i-1], t[i]) for execution from t[i], the next release. Without a plan
-    // the vehicle is told to brake from t[i], as the tree predicts: it must not go on with the
-    // rest of its last plan, which the tree no longer follows. Unless the tree was just started
-    // afresh because the vehicle is off the plans: then it is sent the rest of the plan it
-    // executes, which ends in the braking checked when that plan was committed, rather than
-    // told to brake where nobody checked.
+    // an empty one is sent: the vehicle drives the plan it executes to its end, where its
+    // braking was checked (idl/plan.idl), and the next cycle starts a fresh tree where the
+    // ledger forecasts it then.
     std::span<const PlanStep> sent;
-    State from = cycle_->plan_start();
     if (out.plan_available) {
       sent = std::span<const PlanStep>(cycle_->plan().data(), cycle_->plan().size());
-    } else if (off_plans_) {
-      sent = std::span<const PlanStep>(continuation_.data(),
-                                       ledger_->remainder(*off_plans_, continuation_));
-      from = off_plans_->state;
     }
-    off_plans_.reset();
     sent = sent.first(std::min<std::size_t>(sent.size(), grip_msg_kMaxPlanSteps));
+    const State from = cycle_->plan_start();
     PlanSlot& slot = plans_->write_buffer();
     slot.cycle = cycles_;
     slot.start_time_ns = plan_start_ns_;
@@ -748,6 +740,10 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, const MapC
     }
     slot.committed_monotonic_ns = static_cast<std::uint64_t>(platform::now_ns());
     ledger_->record(cycles_, plan_start_ns_, from, sent);
+    if (!out.plan_available) {
+      const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
+      if (const auto next = forecast(plan_start_ns_ + cycle_ns)) cycle_->resynchronise(next->state);
+    }
     plans_->publish();
     plans_committed_ += out.plan_available ? 1 : 0;
   }
@@ -775,22 +771,29 @@ template <VehicleModel V>
 void PlannerParticipantFor<V>::note_vehicle_state(const StateSample& measured) noexcept {
   state_sequence_ = measured.sequence_number;
   last_state_stamp_ns_ = measured.stamp_ns;
+  last_state_ = measured;
+}
+
+// Where the vehicle will be at until_ns, from the last measured state and the plans sent since.
+template <VehicleModel V>
+std::optional<typename PlanLedger<V>::Forecast> PlannerParticipantFor<V>::forecast(
+    std::uint64_t until_ns) const noexcept {
+  if (last_state_stamp_ns_ == 0 || until_ns < last_state_.stamp_ns) return std::nullopt;
+  return ledger_->forecast(state_of(last_state_), last_state_.stamp_ns, last_state_.plan_cycle,
+                           until_ns);
 }
 
 template <VehicleModel V>
-void PlannerParticipantFor<V>::check_vehicle_follows(const StateSample& measured) noexcept {
+void PlannerParticipantFor<V>::check_vehicle_follows() noexcept {
   // Where the vehicle will be when this cycle's plan starts, from the plan it reports executing
   // and the plans sent since (PlanLedger). When that is not where the tree puts the plan's
   // start (a plan came late or was refused, the vehicle brakes off its plans, the chain of
   // start times was re-anchored), every plan from this tree would be refused: this cycle
   // starts a fresh tree there.
-  off_plans_.reset();
-  const auto forecast =
-      ledger_->forecast(state_of(measured), measured.stamp_ns, measured.plan_cycle, plan_start_ns_);
-  if (!forecast) return;  // it executes a plan older than the ledger: nothing to go by
-  if (states_match(forecast->state, cycle_->next_plan_start())) return;
-  cycle_->resynchronise(forecast->state);
-  off_plans_ = *forecast;
+  const auto at_plan_start = forecast(plan_start_ns_);
+  if (!at_plan_start) return;  // it executes a plan older than the ledger: nothing to go by
+  if (states_match(at_plan_start->state, cycle_->next_plan_start())) return;
+  cycle_->resynchronise(at_plan_start->state);
   ++resyncs_;
 }
 
@@ -1070,7 +1073,6 @@ Status PlannerParticipantFor<V>::create_cycle(double time_scale, bool explore) {
   if (!cycle) return cycle.error();
   cycle_.emplace(std::move(cycle).value());
   ledger_.emplace(vehicle_, planner_config.integration_step_s, grip_msg_kMaxPlanSteps);
-  continuation_.resize(grip_msg_kMaxPlanSteps);
 
   // Exploration's fixed memory, sized from the map, also at start-up (a goal may never come).
   const OccupancyGrid& grid = *grid_;
@@ -1176,7 +1178,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
     }
     note_vehicle_state(state);
     plan_start_ns_ = state.stamp_ns + cycle_ns;  // t[i] = the state's time + T
-    check_vehicle_follows(state);
+    check_vehicle_follows();
     CycleRecord record;
     record.outcome = plan_cycle(start, changes, 0);
     record.cycle = report.cycles++;

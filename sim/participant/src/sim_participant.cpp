@@ -102,7 +102,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       ++report.plans_rejected;
       return;
     }
-    if (plan.steps._length == 0) ++report.brake_plans;
+    if (plan.steps._length == 0) ++report.empty_plans;
     ++report.plans_received;
   };
   double best_coverage = coverage_of(sensed, *reachable);

@@ -115,7 +115,7 @@ TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
       double duration = 0.0;
       for (std::uint32_t i = 0; i < plan.steps._length; ++i)
         duration += plan.steps._buffer[i].duration_s;
-      // A plan covers at least the next cycle, or has no steps: brake from its start.
+      // A plan covers at least the next cycle, or has no steps: nothing new from its start.
       if (plan.steps._length > 0) {
         EXPECT_GE(duration, 0.05 - 1e-9) << "a plan covers at least the next cycle";
         ++moving_plans;

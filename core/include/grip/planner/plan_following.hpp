@@ -17,7 +17,7 @@ enum class ControllerMode : std::uint8_t {
   kBraking,    // performing the braking contingency
 };
 
-// The mode a plan's end leaves the vehicle in (it ran out, or a brake plan or a loss ended it).
+// The mode a plan's end leaves the vehicle in (it ran out, or the planner was lost).
 template <VehicleModel V>
 ControllerMode contingency_mode(const V& vehicle, const typename V::State& q) noexcept {
   return vehicle.is_stopped(q) ? ControllerMode::kAtRest : ControllerMode::kBraking;

@@ -1,16 +1,17 @@
 #pragma once
 // The plans the planner sent, and what the vehicle's controller does with them (idl/plan.idl):
 // each plan starts at its start time if the vehicle is then in the state the plan starts from,
-// and is refused otherwise (the vehicle carries on with what it was doing); a brake plan ends
-// the executed plan; a plan that runs out ends in its braking contingency. From a measured
-// state and the plan the vehicle reports executing, the ledger forecasts where the vehicle will
-// be when the next plan starts, integrating exactly as the controller does (the model's step()
-// and brake_step(), in ticks of the integration step, split where a piece or a plan starts).
+// and is refused otherwise (the vehicle carries on with what it was doing); an empty plan
+// changes nothing the vehicle executes; a plan that runs out ends in its braking contingency.
+// From a measured state and the plan the vehicle reports executing, the ledger forecasts where
+// the vehicle will be when the next plan starts, integrating exactly as the controller does (the
+// model's step() and brake_step(), in ticks of the integration step, split where a piece or a
+// plan starts).
 //
 // The planner compares that forecast with where its tree puts the next plan's start: when they
-// differ (a plan arrived late or was refused, the vehicle brakes off its plans, the chain of
-// start times was re-anchored), the tree must start again from the forecast, or every plan it
-// sends would be refused.
+// differ (a plan arrived late or was refused, the planner had no plan, the chain of start
+// times was re-anchored), the tree must start again from the forecast, or every plan it sends
+// would be refused.
 //
 // Capacity is fixed at construction (kCapacity plans of max_steps pieces); record() and
 // forecast() never allocate and never throw. Planning thread only.
@@ -32,15 +33,13 @@ class PlanLedger {
   static constexpr std::size_t kCapacity = 8;  // plans kept; in flight are at most two or three
 
   struct Forecast {
-    State state = State::Zero();        // at until_ns
-    std::uint64_t cycle = 0;            // the plan executed then (0: braking or at rest)
-    std::uint32_t piece = 0;            // its piece executed then
-    std::int64_t left_in_piece_ns = 0;  // of that piece, after until_ns
+    State state = State::Zero();  // at until_ns
+    std::uint64_t cycle = 0;      // the plan executed then (0: braking or at rest)
   };
 
   PlanLedger(const V& vehicle, double step_s, std::uint32_t max_steps);
 
-  // A plan sent (steps empty: a brake plan). Plans are recorded in the order they are sent.
+  // A plan sent (steps empty: an empty plan). Plans are recorded in the order they are sent.
   void record(std::uint64_t cycle, std::uint64_t start_ns, const State& start,
               std::span<const PlanStep> steps) noexcept;
 
@@ -50,11 +49,6 @@ class PlanLedger {
   std::optional<Forecast> forecast(const State& measured, std::uint64_t stamp_ns,
                                    std::uint64_t executing_cycle,
                                    std::uint64_t until_ns) const noexcept;
-
-  // The rest of the plan a forecast found executing, from its until_ns: written to `out`
-  // (its first piece shortened to what is left of it). Returns the number of pieces; 0 when
-  // the forecast found no plan executing.
-  std::uint32_t remainder(const Forecast& f, std::span<PlanStep> out) const noexcept;
 
  private:
   struct Entry {

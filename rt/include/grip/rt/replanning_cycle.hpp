@@ -150,11 +150,12 @@ class ReplanningCycle {
   void note_changed(const CellBox& box) noexcept { planner_.note_changed(box); }
 
   // The vehicle is not where the plans put it (a plan came late or was refused, it brakes on
-  // its contingency): the next run starts a fresh tree at q, the state the vehicle will hold
-  // at that plan's start.
-  void resynchronise(const State& q) noexcept { resync_ = q; }
-  // Where the next cycle's plan starts if the vehicle follows the committed plan: T along it,
-  // or, when it is shorter than T or there is none, where braking at its end leads.
+  // its contingency, it goes on with a plan this tree did not commit): the next run starts a
+  // fresh tree at q, the state the vehicle will hold at that plan's start.
+  void resynchronise(const State& q) noexcept;
+  // Where the next cycle's plan starts: where resynchronise() put it, else, if the vehicle
+  // follows the committed plan, T along it, or, when it is shorter than T or there is none,
+  // where braking at its end leads.
   State next_plan_start() const noexcept;
 
   // Runs one cycle, growing the tree until now_ns() >= deadline_ns - safety margin - the
@@ -179,7 +180,7 @@ class ReplanningCycle {
       FunctionRef<void()> plan_chosen = [] {}) noexcept;
 
   // The committed plan, from the root of the current cycle (the state at the start of the
-  // next cycle's execution); empty when the vehicle is to brake.
+  // next cycle's execution); empty when this cycle has none.
   const VectorView<PlanStep>& plan() const noexcept { return plan_; }
   // The state the plan starts from, and the one it reaches after T (the next root).
   const State& plan_start() const noexcept;

@@ -11,10 +11,13 @@
 // so no switch is ever early or late.
 //
 // Plans: submit() queues a plan that starts at its start time (not before the current time);
-// submit_brake() queues a brake plan, which ends the executed plan at its start time.
+// submit_empty() queues an empty plan: the planner has nothing new from its start time.
 // The most recent plan governs from its start time on: a submitted plan replaces every queued
 // plan starting at or after it, and at its start time it replaces the plan being executed
-// (unless it is refused there: ExecutorConfig::refuse_start_mismatch).
+// (unless it is refused there: ExecutorConfig::refuse_start_mismatch). An empty plan replaces
+// queued plans the same way but never the executed one: the vehicle drives that to its end,
+// where the planner checked its braking (GRIP.md section 2.3); braking anywhere else was never
+// checked (cutting plans short, a car braked into a door frame).
 // When the executed plan runs out with nothing queued, or abandon_plans() is called (the
 // planner fell silent past its lease), the vehicle performs the model's braking contingency
 // (braking_control / brake_step) until it rests, then stays at rest until the next plan starts.
@@ -94,7 +97,6 @@ struct ExecutorStats {
   std::uint64_t contingencies = 0;        // switches from a plan to the braking contingency
   std::uint64_t plans_ran_out = 0;        // ... because the plan ended with nothing queued
   std::uint64_t plans_abandoned = 0;      // ... because abandon_plans() was called
-  std::uint64_t ended_by_brake_plan = 0;  // ... because a brake plan started
   std::uint64_t plans_accepted = 0;
   std::uint64_t plans_rejected = 0;
   std::uint64_t plans_started = 0;
@@ -131,10 +133,10 @@ class PlanExecutor {
                      const std::optional<State>& predicted_start = std::nullopt,
                      std::uint64_t tag = 0) noexcept;
 
-  // A brake plan (the planner had no plan for a cycle): from start_time_ns on, the plan being
-  // executed is dropped and the vehicle brakes, until a plan queued after it starts. Queued
-  // like a plan (it supersedes those starting at or after it); kStartsInThePast, kQueueFull.
-  PlanVerdict submit_brake(std::int64_t start_time_ns) noexcept;
+  // An empty plan (the planner had no plan for a cycle): it supersedes the queued plans
+  // starting at or after start_time_ns, and the vehicle goes on with the plan it executes then.
+  // kStartsInThePast, kQueueFull as for a plan.
+  PlanVerdict submit_empty(std::int64_t start_time_ns) noexcept;
 
   // The planner is silent past its lease: drops the executed and queued plans and brakes.
   void abandon_plans() noexcept;
@@ -179,7 +181,7 @@ class PlanExecutor {
   PlanExecutor(const V& vehicle, CollisionChecker checker, const State& start,
                std::int64_t start_time_ns, const ExecutorConfig& config);
 
-  enum class ContingencyCause : std::uint8_t { kRanOut, kAbandoned, kBrakePlan };
+  enum class ContingencyCause : std::uint8_t { kRanOut, kAbandoned };
 
   PlanVerdict enqueue(std::span<const PlanStep> steps, std::int64_t start_time_ns,
                       const std::optional<State>& predicted_start, std::uint64_t tag) noexcept;

@@ -98,7 +98,7 @@ struct SimRunReport {
   std::uint64_t plans_rejected = 0;
   std::uint64_t plans_dropped = 0;  // lost on purpose (SimRunConfig::drop_plans)
   std::uint64_t contingency_stops = 0;
-  std::uint64_t brake_plans = 0;       // plans without steps: the planner had nothing safe
+  std::uint64_t empty_plans = 0;       // plans without steps: the planner had nothing new
   std::uint64_t start_mismatches = 0;  // plans refused at their start: not where the vehicle was
   double max_start_error_m = 0.0;      // the largest of those position differences
   std::uint64_t planner_losses = 0;
@@ -110,14 +110,14 @@ struct SimRunReport {
   std::optional<grip_msg_PlannerStatus> last_status;
 };
 
-// A plan from the wire as a controller takes it: without steps, a brake plan from its start
+// A plan from the wire as a controller takes it: without steps, nothing new from its start
 // time; else its steps from its start time, from the state it predicts there, tagged with its
 // cycle (the vehicle's state reports it while it is executed). `steps` is scratch memory.
 template <VehicleModel V>
 PlanVerdict submit_wire_plan(PlanExecutor<V>& executor, const grip_msg_Plan& plan,
                              std::vector<PlanStep>& steps) noexcept {
   const auto start_ns = static_cast<std::int64_t>(plan.start_time_ns);
-  if (plan.steps._length == 0) return executor.submit_brake(start_ns);
+  if (plan.steps._length == 0) return executor.submit_empty(start_ns);
   steps.clear();
   for (std::uint32_t i = 0; i < plan.steps._length; ++i) {
     const grip_msg_PlanStep& s = plan.steps._buffer[i];
