@@ -42,7 +42,8 @@ ExplorationTarget::ExplorationTarget(const ExplorationTargetConfig& config, Occu
       map_(std::move(map)),
       clearance_(std::move(clearance)),
       frontiers_(std::move(frontiers)),
-      rho_(std::move(rho)) {}
+      rho_(std::move(rho)),
+      retries_left_(config.retry_rounds) {}
 
 void ExplorationTarget::copy_map(const OccupancyGrid& map) noexcept {
   GRIP_ASSERT(map.width() == map_.width() && map.height() == map_.height() &&
@@ -56,7 +57,13 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
                                             std::int64_t now_ns) noexcept {
   const bool map_changed = std::exchange(map_changed_, false);
   if (map_changed) clearance_.compute(map_);
-  const ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m);
+  ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m);
+  if (status == ExplorationStatus::kComplete && frontiers_.given_up_groups() > 0 &&
+      retries_left_ > 0) {
+    --retries_left_;
+    frontiers_.forgive_all();
+    status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m);
+  }
   if (status != ExplorationStatus::kTarget) return status;
   rho_.compute(map_, clearance_, frontiers_.approach_cells(), config_.frontier.clearance_m);
   const FrontierGroup& group = frontiers_.groups()[frontiers_.target()];

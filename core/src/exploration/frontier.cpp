@@ -125,6 +125,10 @@ void FrontierMap::give_up(std::uint32_t group) noexcept {
   }
 }
 
+void FrontierMap::forgive_all() noexcept {
+  std::fill(given_up_.begin(), given_up_.end(), std::uint8_t{0});
+}
+
 std::span<const std::uint32_t> FrontierMap::target_cells() const noexcept {
   return target_ == kNoGroup ? std::span<const std::uint32_t>{} : group_cells(target_);
 }

@@ -95,7 +95,27 @@ TEST_F(ExplorationTargetTest, ATargetWithoutProgressIsGivenUpAfterTheConfiguredT
   ASSERT_EQ(target->choose(1.0, 1.0, 62 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(target->given_up_groups(), 1U);
   EXPECT_NE(sorted(target->target_cells()), first);
-  // AND when that one is given up too, exploration ends and says why
+  // AND when that one is given up too, both are taken back once (retry_rounds: 1): the best
+  // group is the target again
+  ASSERT_EQ(target->choose(1.0, 1.0, 123 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 124 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  EXPECT_EQ(sorted(target->target_cells()), first);
+  // AND when both are given up again, exploration ends and says why
+  ASSERT_EQ(target->choose(1.0, 1.0, 185 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 186 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+  ASSERT_EQ(target->choose(1.0, 1.0, 247 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->choose(1.0, 1.0, 248 * kSecond), ExplorationStatus::kComplete);
+  EXPECT_EQ(target->given_up_groups(), 2U);
+}
+
+TEST_F(ExplorationTargetTest, WithoutRetryRoundsTheFirstTimeEverythingIsGivenUpEndsExploration) {
+  config.retry_rounds = 0;
+  target.emplace(ExplorationTarget::create(map, config).value());
+  ASSERT_EQ(target->choose(1.0, 1.0, 0), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 61 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 62 * kSecond), ExplorationStatus::kTarget);
   ASSERT_EQ(target->choose(1.0, 1.0, 123 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(target->choose(1.0, 1.0, 124 * kSecond), ExplorationStatus::kComplete);
   EXPECT_EQ(target->given_up_groups(), 2U);

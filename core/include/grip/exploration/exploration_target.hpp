@@ -14,7 +14,10 @@
 // another group or ends exploration. A new target (its nearest cell moved by more than
 // retarget_m), progress, or a changed map restart that clock: a vehicle that still senses new
 // cells is not stuck, and in a small space successive targets lie within a few metres of each
-// other.
+// other. Once only given-up groups are left they are all taken back, retry_rounds times: a
+// vehicle often got no closer because its planner found no plan for a while (a real-time run
+// through a period of stalls), not because the group is out of its reach; a car at a time scale
+// of 10 ended `stuck` at 0.98 having given up corners it could reach.
 //
 // Memory is reserved by create(); copy_map() and choose() never allocate and never throw.
 
@@ -35,6 +38,7 @@ struct ExplorationTargetConfig {
   double give_up_after_s = 60.0;  // [s of vehicle time] without progress toward a target
   double progress_m = 0.5;        // rho_A* must drop by this much to count as progress
   double retarget_m = 3.0;        // a nearest cell that moves this far is a new target
+  std::uint32_t retry_rounds = 1;  // times the groups given up are retried when nothing is left
   // Errors name the bad value: FrontierConfig's, and any of the above not finite or not > 0.
   Status validate(double resolution_m) const;
 };
@@ -89,6 +93,7 @@ class ExplorationTarget {
   // Progress toward the target: its best rho_A* and when (vehicle time) it was reached.
   double best_rho_m_ = std::numeric_limits<double>::infinity();
   std::int64_t progress_ns_ = 0;
+  std::uint32_t retries_left_;
 };
 
 }  // namespace grip

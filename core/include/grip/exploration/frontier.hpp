@@ -110,6 +110,8 @@ class FrontierMap {
   // of whose cells lie within give_up_radius_m of cells given up is not a target; when only
   // such groups remain, update() says kComplete and given_up_groups() counts them.
   void give_up(std::uint32_t group) noexcept;
+  // Takes every group given up back (ExplorationTarget retries them once nothing else is left).
+  void forgive_all() noexcept;
   // Reachable groups of the last update passed over because they were given up.
   std::uint32_t given_up_groups() const noexcept { return given_up_groups_; }
   // Every frontier cell, grouped: group g's cells are contiguous (see FrontierGroup::first), in
