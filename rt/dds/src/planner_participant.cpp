@@ -234,6 +234,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   void note_vehicle_state(const StateSample& measured) noexcept;
   void check_vehicle_follows() noexcept;
   std::optional<typename PlanLedger<V>::Forecast> forecast(std::uint64_t until_ns) const noexcept;
+  void follow_forecast(std::uint64_t until_ns) noexcept;
   PlannerParticipantReport final_report(PlannerParticipantReport report);
   std::string progress_line(const PlannerParticipantReport& report) const;
   static State state_of(const StateSample& sample) noexcept {
@@ -318,8 +319,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   std::atomic<bool> plan_coming_{false};
   std::uint64_t state_sequence_ = 0;
   std::uint64_t plan_start_ns_ = 0;  // vehicle time at which this cycle's plan starts
-  std::uint64_t last_state_stamp_ns_ = 0;
-  StateSample last_state_{};  // the last measured state (valid once last_state_stamp_ns_ != 0)
+  std::optional<StateSample> last_state_;  // the last measured state
   std::uint64_t resyncs_ = 0;
   // The plans sent, to forecast where the vehicle will be (check_vehicle_follows, and where
   // the plan it goes on with leads when a cycle has none).
@@ -672,12 +672,12 @@ void PlannerParticipantFor<V>::chain_plan_start(std::int64_t release_ns) noexcep
   plan_start_ns_ += cycle_ns;
   const bool too_early = plan_start_ns_ + cycle_ns / 8 < wanted;
   const bool too_late = plan_start_ns_ > wanted + cycle_ns + cycle_ns / 2;
-  if ((too_early || too_late) && last_state_stamp_ns_ != 0) {
+  if ((too_early || too_late) && last_state_) {
+    const std::uint64_t stamp_ns = last_state_->stamp_ns;
     const double cycles =
-        std::ceil(static_cast<double>(static_cast<std::int64_t>(wanted - last_state_stamp_ns_)) /
+        std::ceil(static_cast<double>(static_cast<std::int64_t>(wanted - stamp_ns)) /
                   static_cast<double>(cycle_ns));
-    plan_start_ns_ =
-        last_state_stamp_ns_ + static_cast<std::uint64_t>(std::max(0.0, cycles)) * cycle_ns;
+    plan_start_ns_ = stamp_ns + static_cast<std::uint64_t>(std::max(0.0, cycles)) * cycle_ns;
   }
 }
 
@@ -741,8 +741,7 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, const MapC
     slot.committed_monotonic_ns = static_cast<std::uint64_t>(platform::now_ns());
     ledger_->record(cycles_, plan_start_ns_, from, sent);
     if (!out.plan_available) {
-      const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
-      if (const auto next = forecast(plan_start_ns_ + cycle_ns)) cycle_->resynchronise(next->state);
+      follow_forecast(plan_start_ns_ + static_cast<std::uint64_t>(ns_of(config_.cycle_s)));
     }
     plans_->publish();
     plans_committed_ += out.plan_available ? 1 : 0;
@@ -770,7 +769,6 @@ CycleOutcome PlannerParticipantFor<V>::plan_cycle(std::int64_t start, const MapC
 template <VehicleModel V>
 void PlannerParticipantFor<V>::note_vehicle_state(const StateSample& measured) noexcept {
   state_sequence_ = measured.sequence_number;
-  last_state_stamp_ns_ = measured.stamp_ns;
   last_state_ = measured;
 }
 
@@ -778,9 +776,20 @@ void PlannerParticipantFor<V>::note_vehicle_state(const StateSample& measured) n
 template <VehicleModel V>
 std::optional<typename PlanLedger<V>::Forecast> PlannerParticipantFor<V>::forecast(
     std::uint64_t until_ns) const noexcept {
-  if (last_state_stamp_ns_ == 0 || until_ns < last_state_.stamp_ns) return std::nullopt;
-  return ledger_->forecast(state_of(last_state_), last_state_.stamp_ns, last_state_.plan_cycle,
+  if (!last_state_ || until_ns < last_state_->stamp_ns) return std::nullopt;
+  return ledger_->forecast(state_of(*last_state_), last_state_->stamp_ns, last_state_->plan_cycle,
                            until_ns);
+}
+
+// The next tree starts where the vehicle will be at until_ns when that is not where the cycle
+// puts it (counted in resyncs_).
+template <VehicleModel V>
+void PlannerParticipantFor<V>::follow_forecast(std::uint64_t until_ns) noexcept {
+  const auto there = forecast(until_ns);
+  if (!there) return;  // it executes a plan older than the ledger: nothing to go by
+  if (states_match(there->state, cycle_->next_plan_start())) return;
+  cycle_->resynchronise(there->state);
+  ++resyncs_;
 }
 
 template <VehicleModel V>
@@ -790,11 +799,7 @@ void PlannerParticipantFor<V>::check_vehicle_follows() noexcept {
   // start (a plan came late or was refused, the vehicle brakes off its plans, the chain of
   // start times was re-anchored), every plan from this tree would be refused: this cycle
   // starts a fresh tree there.
-  const auto at_plan_start = forecast(plan_start_ns_);
-  if (!at_plan_start) return;  // it executes a plan older than the ledger: nothing to go by
-  if (states_match(at_plan_start->state, cycle_->next_plan_start())) return;
-  cycle_->resynchronise(at_plan_start->state);
-  ++resyncs_;
+  follow_forecast(plan_start_ns_);
 }
 
 // The frontier target is chosen again every target_refresh_cycles cycles, from where the plan
@@ -1008,8 +1013,7 @@ Status PlannerParticipantFor<V>::start_up() {
       target_y_m_ = first.y_m;
       Status started_cycle = cycle_->start(q0, first);
       if (started_cycle.ok()) {
-        state_sequence_ = state->sequence_number;
-        last_state_stamp_ns_ = state->stamp_ns;
+        note_vehicle_state(*state);
         first_state_ = *state;
         return Ok{};
       }

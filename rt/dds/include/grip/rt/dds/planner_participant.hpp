@@ -112,7 +112,7 @@ struct PlannerParticipantReport {
   std::uint64_t map_checksum = 0;    // of the planning thread's map at the end
   std::uint64_t vehicle_losses = 0;  // times the vehicle's liveliness was lost
   bool explored = false;             // exploration ended: no reachable frontier remained
-  std::uint64_t resyncs = 0;         // fresh trees from where a vehicle off its plans will be
+  std::uint64_t resyncs = 0;         // fresh trees from where a vehicle off the tree will be
   bool allocations_counted = false;
   std::uint64_t heap_allocations_in_loop = 0;  // planning thread, after warm-up
   platform::ThreadUsage usage_in_loop{};
