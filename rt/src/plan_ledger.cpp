@@ -27,6 +27,19 @@ PlanLedger<V>::PlanLedger(const V& vehicle, double step_s, std::uint32_t max_ste
 template <VehicleModel V>
 void PlanLedger<V>::record(std::uint64_t cycle, std::uint64_t start_ns, const State& start,
                            std::span<const PlanStep> steps) noexcept {
+  if (steps.empty() && count_ > 0) {
+    // A run of empty plans is one entry: each changes nothing the one before did not (it drops
+    // the queued plans starting at or after the earlier start of the two), and a planner
+    // without a plan for many cycles must not push out the plan the vehicle goes on with (with
+    // 8 entries it did: the forecast was lost and the tree restarted where the vehicle was not).
+    Entry& last = entries_[(next_ + kCapacity - 1) % kCapacity];
+    if (last.steps.empty()) {
+      last.cycle = cycle;
+      last.start_ns = std::min(last.start_ns, static_cast<std::int64_t>(start_ns));
+      last.start = start;
+      return;
+    }
+  }
   Entry& e = entries_[next_];
   next_ = (next_ + 1) % kCapacity;
   count_ = std::min(count_ + 1, kCapacity);

@@ -73,6 +73,29 @@ TEST_F(PlanLedgerTest, AnEmptyPlanSupersedesQueuedPlansAndLeavesTheExecutedOneRu
   EXPECT_EQ(after->cycle, 0U);
 }
 
+TEST_F(PlanLedgerTest, ARunOfEmptyPlansKeepsThePlanTheVehicleGoesOnWith) {
+  // A planner without a plan for many cycles sends an empty plan each cycle; the vehicle
+  // drives its last plan on, and the ledger must still know it.
+  ledger.record(1, 0, origin, std::vector<PlanStep>{piece(1.0, 1.0, 10.0)});
+  for (std::uint64_t cycle = 2; cycle < 2 + 4 * PlanLedger<DdVelocity>::kCapacity; ++cycle) {
+    ledger.record(cycle, cycle * 50 * kMs, origin, {});
+  }
+  const auto f = ledger.forecast(robot.rest_state(2.0, 1.0, 0.0), 1000 * kMs, 1, 5000 * kMs);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NEAR(f->state[0], 6.0, 1e-12);
+  EXPECT_EQ(f->cycle, 1U);
+  // The run still drops a plan queued behind it, as its earliest member would: plan 100 was
+  // queued for 6 s, then empty plans from 5.5 s and 7 s came.
+  ledger.record(100, 6000 * kMs, robot.rest_state(6.0, 1.0, 0.0),
+                std::vector<PlanStep>{piece(-1.0, -1.0, 1.0)});
+  ledger.record(101, 5500 * kMs, origin, {});
+  ledger.record(102, 7000 * kMs, origin, {});
+  const auto g = ledger.forecast(robot.rest_state(2.0, 1.0, 0.0), 1000 * kMs, 1, 7000 * kMs);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_NEAR(g->state[0], 8.0, 1e-12);  // plan 100 never started
+  EXPECT_EQ(g->cycle, 1U);
+}
+
 TEST_F(PlanLedgerTest, APlanOlderThanTheLedgerGivesNoForecast) {
   for (std::uint64_t cycle = 1; cycle <= PlanLedger<DdVelocity>::kCapacity + 1; ++cycle) {
     ledger.record(cycle, cycle * 50 * kMs, origin, std::vector<PlanStep>{piece(1.0, 1.0, 1.0)});

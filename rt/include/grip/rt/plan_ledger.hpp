@@ -30,7 +30,9 @@ template <VehicleModel V>
 class PlanLedger {
  public:
   using State = typename V::State;
-  static constexpr std::size_t kCapacity = 8;  // plans kept; in flight are at most two or three
+  // Plans kept: the one executed and those sent since (refused ones too; runs of empty plans
+  // count once).
+  static constexpr std::size_t kCapacity = 16;
 
   struct Forecast {
     State state = State::Zero();  // at until_ns
@@ -39,7 +41,8 @@ class PlanLedger {
 
   PlanLedger(const V& vehicle, double step_s, std::uint32_t max_steps);
 
-  // A plan sent (steps empty: an empty plan). Plans are recorded in the order they are sent.
+  // A plan sent (steps empty: an empty plan). Plans are recorded in the order they are sent;
+  // consecutive empty plans share one entry.
   void record(std::uint64_t cycle, std::uint64_t start_ns, const State& start,
               std::span<const PlanStep> steps) noexcept;
 
