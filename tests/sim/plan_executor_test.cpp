@@ -290,8 +290,8 @@ TEST(PlanExecutorForecastTest, ThePlannersForecastLandsExactlyWhereTheController
   send(5, 3000 * kMs, at_3000.state, {piece(0.6, 0.0, 0.5)});
 
   std::vector<std::pair<std::int64_t, DdAcceleration::State>> truth_at;
-  for (std::int64_t t : {525 * kMs, 800 * kMs, 1000 * kMs, 1600 * kMs, 2950 * kMs, 3250 * kMs,
-                         3800 * kMs}) {
+  for (std::int64_t t :
+       {525 * kMs, 800 * kMs, 1000 * kMs, 1600 * kMs, 2950 * kMs, 3250 * kMs, 3800 * kMs}) {
     executor.run_until(t);
     truth_at.emplace_back(executor.now_ns(), executor.state());
   }

@@ -318,7 +318,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   // the publish thread wakes meanwhile and is running when the plan is handed over.
   std::atomic<bool> plan_coming_{false};
   std::uint64_t state_sequence_ = 0;
-  std::uint64_t plan_start_ns_ = 0;  // vehicle time at which this cycle's plan starts
+  std::uint64_t plan_start_ns_ = 0;        // vehicle time at which this cycle's plan starts
   std::optional<StateSample> last_state_;  // the last measured state
   std::uint64_t resyncs_ = 0;
   // The plans sent, to forecast where the vehicle will be (check_vehicle_follows, and where

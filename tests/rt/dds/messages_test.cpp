@@ -188,7 +188,8 @@ TEST(Messages, BadPlansAreRejectedByTheController) {
   EXPECT_EQ(check_plan(plan, VehicleKind::kCar).reason, Rejection::kUnknownVehicleKind);
   plan.kind = grip_msg_CAR;
   plan.steps._length = 0;
-  EXPECT_TRUE(check_plan(plan, VehicleKind::kCar).ok()) << "no steps: nothing new from the start time";
+  EXPECT_TRUE(check_plan(plan, VehicleKind::kCar).ok())
+      << "no steps: nothing new from the start time";
   plan.steps._length = 3;
   plan.start_state[0] = kNaN;
   EXPECT_EQ(check_plan(plan, VehicleKind::kCar).reason, Rejection::kNotFinite);

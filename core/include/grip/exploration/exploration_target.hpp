@@ -35,9 +35,9 @@ namespace grip {
 
 struct ExplorationTargetConfig {
   FrontierConfig frontier;
-  double give_up_after_s = 60.0;  // [s of vehicle time] without progress toward a target
-  double progress_m = 0.5;        // rho_A* must drop by this much to count as progress
-  double retarget_m = 3.0;        // a nearest cell that moves this far is a new target
+  double give_up_after_s = 60.0;   // [s of vehicle time] without progress toward a target
+  double progress_m = 0.5;         // rho_A* must drop by this much to count as progress
+  double retarget_m = 3.0;         // a nearest cell that moves this far is a new target
   std::uint32_t retry_rounds = 1;  // times the groups given up are retried when nothing is left
   // Errors name the bad value: FrontierConfig's, and any of the above not finite or not > 0.
   Status validate(double resolution_m) const;

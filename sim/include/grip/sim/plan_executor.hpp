@@ -94,9 +94,9 @@ struct ExecutorStats {
   std::uint64_t ticks = 0;
   std::uint64_t collisions = 0;  // collision events (entering collision)
   std::uint64_t ticks_in_collision = 0;
-  std::uint64_t contingencies = 0;        // switches from a plan to the braking contingency
-  std::uint64_t plans_ran_out = 0;        // ... because the plan ended with nothing queued
-  std::uint64_t plans_abandoned = 0;      // ... because abandon_plans() was called
+  std::uint64_t contingencies = 0;    // switches from a plan to the braking contingency
+  std::uint64_t plans_ran_out = 0;    // ... because the plan ended with nothing queued
+  std::uint64_t plans_abandoned = 0;  // ... because abandon_plans() was called
   std::uint64_t plans_accepted = 0;
   std::uint64_t plans_rejected = 0;
   std::uint64_t plans_started = 0;
