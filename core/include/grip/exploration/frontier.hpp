@@ -105,9 +105,9 @@ class FrontierMap {
                            double robot_x_m, double robot_y_m) noexcept;
 
   ExplorationStatus status() const noexcept { return status_; }
-  // Sets group `group` of the last update aside for good: a frontier the vehicle could not get
-  // closer to (its dynamics, a gap the wavefront passes but the chassis does not). A group all
-  // of whose cells lie within give_up_radius_m of cells given up is not a target; when only
+  // Sets group `group` of the last update aside (until forgive_all()): a frontier the vehicle could
+  // not get closer to (its dynamics, a gap the wavefront passes but the chassis does not). A group
+  // all of whose cells lie within give_up_radius_m of cells given up is not a target; when only
   // such groups remain, update() says kComplete and given_up_groups() counts them.
   void give_up(std::uint32_t group) noexcept;
   // Takes every group given up back (ExplorationTarget retries them once nothing else is left).
