@@ -157,18 +157,35 @@ std::shared_ptr<ob::CompoundStateSpace> make_state_space(const V& vehicle,
 }
 
 // Controls drawn by the vehicle's own sample_control, from a generator seeded by OMPL's
-// (so ompl::RNG::setSeed fixes them like every other random choice of the planner).
+// (so ompl::RNG::setSeed fixes them like every other random choice of the planner). Where
+// OMPL gives the state, models that aim their controls at a velocity do so as in GRIP; OMPL
+// draws the duration after the control, so they aim at the mean hold.
 template <VehicleModel V>
 class CoreControlSampler : public oc::ControlSampler {
  public:
-  CoreControlSampler(const oc::ControlSpace* space, const V& vehicle)
-      : oc::ControlSampler(space), vehicle_(vehicle), random_(rng_.getLocalSeed()) {}
+  CoreControlSampler(const oc::ControlSpace* space, const V& vehicle, double mean_hold_s)
+      : oc::ControlSampler(space),
+        vehicle_(vehicle),
+        mean_hold_s_(mean_hold_s),
+        random_(rng_.getLocalSeed()) {}
   void sample(oc::Control* control) override {
     to_ompl_control<V>(vehicle_.sample_control(random_), control);
+  }
+  void sample(oc::Control* control, const ob::State* state) override {
+    if constexpr (SteersToVelocityTarget<V>) {
+      to_ompl_control<V>(vehicle_.sample_control(to_core<V>(state), mean_hold_s_, random_),
+                         control);
+    } else {
+      sample(control);
+    }
+  }
+  void sampleNext(oc::Control* control, const oc::Control*, const ob::State* state) override {
+    sample(control, state);
   }
 
  private:
   V vehicle_;
+  double mean_hold_s_;
   Random random_;
 };
 
@@ -276,8 +293,9 @@ OmplProblem make_problem(const V& vehicle, const CollisionChecker& checker,
     b.setHigh(i, cb[i].second);
   }
   cspace->setBounds(b);
-  cspace->setControlSamplerAllocator([vehicle](const oc::ControlSpace* cs) {
-    return std::make_shared<CoreControlSampler<V>>(cs, vehicle);
+  const double mean_hold_s = 0.5 * (settings.min_steps + settings.max_steps) * settings.step_s;
+  cspace->setControlSamplerAllocator([vehicle, mean_hold_s](const oc::ControlSpace* cs) {
+    return std::make_shared<CoreControlSampler<V>>(cs, vehicle, mean_hold_s);
   });
   p.setup = std::make_shared<oc::SimpleSetup>(cspace);
   const oc::SpaceInformationPtr& si = p.setup->getSpaceInformation();

@@ -19,6 +19,7 @@ Status CarParams::validate() const {
   }
   if (auto s = validate_positive("car.max_steer_rate_rad_s", max_steer_rate_rad_s); !s) return s;
   if (auto s = validate_positive("car.wheelbase_m", wheelbase_m); !s) return s;
+  if (auto s = validate_share("car.velocity_target_share", velocity_target_share); !s) return s;
   return validate_footprint("car", footprint);
 }
 
@@ -55,6 +56,17 @@ Car::Control Car::sample_control(Random& rng) const noexcept {
   const double steer_rate =
       rng.uniform(-params_.max_steer_rate_rad_s, params_.max_steer_rate_rad_s);
   return {a, steer_rate};
+}
+
+Car::Control Car::sample_control(const State& q, double hold_s, Random& rng) const noexcept {
+  // Uniform controls held for 1-4 s end many edges from a turn at full lock, and a third of
+  // them reversing; a target ends edges at every steering angle alike, at a forward speed.
+  if (!(rng.uniform01() < params_.velocity_target_share)) return sample_control(rng);
+  const double speed = rng.uniform(0.0, params_.max_speed_m_s);
+  const double steer = rng.uniform(-params_.max_steer_rad, params_.max_steer_rad);
+  return {std::clamp((speed - q[3]) / hold_s, -params_.max_accel_m_s2, params_.max_accel_m_s2),
+          std::clamp((steer - q[4]) / hold_s, -params_.max_steer_rate_rad_s,
+                     params_.max_steer_rate_rad_s)};
 }
 
 Car::Control Car::braking_control(const State& q) const noexcept {

@@ -16,6 +16,9 @@ Status DdAccelerationParams::validate() const {
     return s;
   }
   if (auto s = validate_positive("dd-accel.half_axle_m", half_axle_m); !s) return s;
+  if (auto s = validate_share("dd-accel.velocity_target_share", velocity_target_share); !s) {
+    return s;
+  }
   return validate_footprint("dd-accel", footprint);
 }
 
@@ -65,6 +68,30 @@ DdAcceleration::Control DdAcceleration::sample_control(Random& rng) const noexce
   const double a_left = rng.uniform(-a, a);
   const double a_right = rng.uniform(-a, a);
   return {a_left, a_right};
+}
+
+DdAcceleration::Control DdAcceleration::sample_control(const State& q, double hold_s,
+                                                       Random& rng) const noexcept {
+  // Uniform accelerations held for 1-4 s leave the turn rate at its limit on most edges
+  // (|a_r - a_l| / 2L saturates pi/2 rad/s in under a second), so the tree is made of tight
+  // spirals and the vehicle loops. A target in velocity space instead ends edges at every turn
+  // rate, straight ones included, and at speed: the target's speed is drawn forward.
+  if (!(rng.uniform01() < params_.velocity_target_share)) return sample_control(rng);
+  const double vmax = params_.max_wheel_speed_m_s;
+  const double a = params_.max_wheel_accel_m_s2;
+  const double speed = rng.uniform(0.0, vmax);
+  const double turn_rate = rng.uniform(-params_.max_turn_rate_rad_s, params_.max_turn_rate_rad_s);
+  // The target's wheel speeds within their limits, the turn given up first.
+  const double room = vmax - speed;
+  const double half_diff = std::clamp(params_.half_axle_m * turn_rate, -room, room);
+  // Where the limit does not allow both in the hold, the turn comes first: it shapes the path,
+  // and the speed follows on the next edge.
+  const double half_turn_accel =
+      std::clamp((half_diff - 0.5 * (q[4] - q[3])) / hold_s, -a, a);
+  const double speed_room = a - std::abs(half_turn_accel);
+  const double speed_accel =
+      std::clamp((speed - 0.5 * (q[3] + q[4])) / hold_s, -speed_room, speed_room);
+  return {speed_accel - half_turn_accel, speed_accel + half_turn_accel};
 }
 
 DdAcceleration::Control DdAcceleration::braking_control(const State& q) const noexcept {

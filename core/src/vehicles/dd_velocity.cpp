@@ -9,10 +9,7 @@ Status DdVelocityParams::validate() const {
   if (auto s = validate_positive("dd-vel.max_wheel_speed_m_s", max_wheel_speed_m_s); !s) return s;
   if (auto s = validate_positive("dd-vel.max_turn_rate_rad_s", max_turn_rate_rad_s); !s) return s;
   if (auto s = validate_positive("dd-vel.half_axle_m", half_axle_m); !s) return s;
-  if (!(top_speed_share >= 0.0 && top_speed_share <= 1.0)) {
-    return invalid_argument("dd-vel.top_speed_share must be in [0, 1] (got " +
-                            std::to_string(top_speed_share) + ")");
-  }
+  if (auto s = validate_share("dd-vel.top_speed_share", top_speed_share); !s) return s;
   return validate_footprint("dd-vel", footprint);
 }
 

@@ -29,6 +29,14 @@ Status validate_positive(std::string_view name, double value) {
   return Ok{};
 }
 
+Status validate_share(std::string_view name, double value) {
+  if (!(value >= 0.0 && value <= 1.0)) {
+    return invalid_argument(std::string(name) + " must be in [0, 1] (got " +
+                            std::to_string(value) + ")");
+  }
+  return Ok{};
+}
+
 Status validate_finite_state(std::string_view vehicle, const double* values, int n) {
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(values[i])) {

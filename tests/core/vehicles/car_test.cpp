@@ -86,6 +86,49 @@ TEST_F(CarTest, SampledControlsStayWithinLimits) {
   }
 }
 
+// Edges held 2.5 s from rest and from a turn: the share of them that end at full steering lock,
+// and the share that end reversing.
+struct EdgeEnds {
+  double at_full_lock = 0.0;
+  double reversing = 0.0;
+};
+EdgeEnds edge_ends(double velocity_target_share) {
+  CarParams params;
+  params.velocity_target_share = velocity_target_share;
+  const auto car = Car::create(params).value();
+  const double hold_s = 2.5;
+  const double dt = 0.05;
+  Car::State rest;
+  rest << 0.0, 0.0, 0.0, 0.0, 0.0;
+  Car::State turning;
+  turning << 0.0, 0.0, 0.0, 1.0, 0.6;
+  Random rng(5);
+  EdgeEnds ends;
+  const int per_start = 2'000;
+  for (const auto& from : {rest, turning}) {
+    for (int i = 0; i < per_start; ++i) {
+      const auto u = car.sample_control(from, hold_s, rng);
+      EXPECT_TRUE(car.validate_control(u));
+      auto q = from;
+      for (int k = 0; k < 50; ++k) q = car.step(q, u, dt);
+      EXPECT_TRUE(car.validate_state(q));
+      if (std::abs(q[4]) > 0.99 * params.max_steer_rad) ends.at_full_lock += 0.5 / per_start;
+      if (q[3] < 0.0) ends.reversing += 0.5 / per_start;
+    }
+  }
+  return ends;
+}
+
+TEST(CarSampling, ControlsAimedAtAVelocityEndEdgesBelowFullLockAndForward) {
+  // Uniform controls: edges from a turn pile up at full lock, and a third of them reverse.
+  const EdgeEnds uniform = edge_ends(0.0);
+  EXPECT_GT(uniform.at_full_lock, 0.15);
+  EXPECT_GT(uniform.reversing, 0.2);
+  const EdgeEnds aimed = edge_ends(1.0);
+  EXPECT_LT(aimed.at_full_lock, 0.05);
+  EXPECT_EQ(aimed.reversing, 0.0);
+}
+
 TEST_F(CarTest, InvalidParametersAndStatesAreRefused) {
   CarParams p;
   p.min_speed_m_s = 1.0;
@@ -98,6 +141,11 @@ TEST_F(CarTest, InvalidParametersAndStatesAreRefused) {
   p = CarParams{};
   p.wheelbase_m = -0.5;
   EXPECT_FALSE(Car::create(p));
+  p = CarParams{};
+  p.velocity_target_share = -0.1;
+  r = Car::create(p);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("velocity_target_share"), std::string::npos);
   EXPECT_FALSE(car.validate_state(state(0, 0, 0, 3.5, 0)));
   EXPECT_FALSE(car.validate_state(state(0, 0, 0, 0, 1.0)));
   EXPECT_FALSE(car.validate_state(state(INFINITY, 0, 0, 0, 0)));

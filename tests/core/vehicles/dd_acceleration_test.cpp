@@ -79,12 +79,61 @@ TEST_F(DdAccelerationTest, BrakingFromTopSpeedStopsWithinTheModelsStoppingTime) 
   EXPECT_NEAR(q[0], -7.5, 1e-6);  // v^2 / (2 a) = 9 / 1.2 backwards
 }
 
+// Edges held 2.5 s from rest and from a turn at the limit: the share of them that end turning
+// at the turn-rate limit, and the share that end driving backward.
+struct EdgeEnds {
+  double at_turn_limit = 0.0;
+  double backward = 0.0;
+};
+EdgeEnds edge_ends(double velocity_target_share) {
+  DdAccelerationParams params;
+  params.velocity_target_share = velocity_target_share;
+  const auto robot = DdAcceleration::create(params).value();
+  const double limit = 2.0 * params.half_axle_m * params.max_turn_rate_rad_s;  // wheel difference
+  const double hold_s = 2.5;
+  const double dt = 0.05;
+  DdAcceleration::State rest;
+  rest << 0.0, 0.0, 0.0, 0.0, 0.0;
+  DdAcceleration::State turning;
+  turning << 0.0, 0.0, 0.0, 1.0 - 0.5 * limit, 1.0 + 0.5 * limit;
+  Random rng(5);
+  EdgeEnds ends;
+  const int per_start = 2'000;
+  for (const auto& from : {rest, turning}) {
+    for (int i = 0; i < per_start; ++i) {
+      const auto u = robot.sample_control(from, hold_s, rng);
+      EXPECT_TRUE(robot.validate_control(u));
+      auto q = from;
+      for (int k = 0; k < 50; ++k) q = robot.step(q, u, dt);
+      EXPECT_TRUE(robot.validate_state(q));
+      if (std::abs(q[4] - q[3]) > 0.99 * limit) ends.at_turn_limit += 0.5 / per_start;
+      if (q[3] + q[4] < 0.0) ends.backward += 0.5 / per_start;
+    }
+  }
+  return ends;
+}
+
+TEST(DdAccelerationSampling, ControlsAimedAtAVelocityEndEdgesBelowTheTurnRateLimitAndForward) {
+  // Uniform accelerations: most edges end spinning at the limit (the loops the robot drove).
+  const EdgeEnds uniform = edge_ends(0.0);
+  EXPECT_GT(uniform.at_turn_limit, 0.5);
+  EXPECT_GT(uniform.backward, 0.2);
+  const EdgeEnds aimed = edge_ends(1.0);
+  EXPECT_LT(aimed.at_turn_limit, 0.1);
+  EXPECT_EQ(aimed.backward, 0.0);
+}
+
 TEST_F(DdAccelerationTest, InvalidParametersAndStatesAreRefused) {
   DdAccelerationParams p;
   p.max_wheel_accel_m_s2 = 0.0;
   auto r = DdAcceleration::create(p);
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().message.find("max_wheel_accel_m_s2"), std::string::npos);
+  p = DdAccelerationParams{};
+  p.velocity_target_share = 1.5;
+  r = DdAcceleration::create(p);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("velocity_target_share"), std::string::npos);
   EXPECT_FALSE(robot.validate_state(state(0, 0, 0, 3.5, 0)));
   EXPECT_FALSE(robot.validate_state(state(0, 0, std::nan(""), 0, 0)));
   EXPECT_TRUE(robot.validate_state(state(0, 0, 0, 3.0, -3.0)));

@@ -23,6 +23,9 @@ struct CarParams {
   double max_steer_rate_rad_s = 19.5 * std::numbers::pi / 180.0;  // paper: 19.5 (deg/s read)
   double wheelbase_m = 0.5;                                       // L
   Footprint footprint{0.6, 0.15, 0.2};  // 0.75 m x 0.4 m around the rear axle
+  // The share of the planner's sampled controls that steer speed and steering angle to a
+  // random target (sample_control with a state), in [0, 1].
+  double velocity_target_share = 0.5;
 
   Status validate() const;
 };
@@ -37,7 +40,12 @@ class Car {
   static Result<Car> create(const CarParams& params);
 
   State step(const State& q, const Control& u, double dt) const noexcept;
+  // Acceleration and steering rate uniform within the limits.
   Control sample_control(Random& rng) const noexcept;
+  // The control for a hold of hold_s from q: with velocity_target_share, the acceleration and
+  // steering rate that bring q's speed and steering angle to a random forward speed and
+  // steering angle at the end of the hold (as far as the limits allow); otherwise uniform.
+  Control sample_control(const State& q, double hold_s, Random& rng) const noexcept;
   Control braking_control(const State& q) const noexcept;
   State brake_step(const State& q, double dt) const noexcept;
   bool is_stopped(const State& q) const noexcept { return q[3] == 0.0; }

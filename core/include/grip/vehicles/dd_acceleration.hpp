@@ -19,6 +19,9 @@ struct DdAccelerationParams {
   double max_wheel_accel_m_s2 = 0.6;                  // paper: |a| <= 0.6
   double half_axle_m = 0.2;                           // L
   Footprint footprint{0.25, 0.25, 0.2};
+  // The share of the planner's sampled controls that steer the wheel speeds to a random target
+  // (sample_control with a state), in [0, 1].
+  double velocity_target_share = 0.5;
 
   Status validate() const;
 };
@@ -33,7 +36,12 @@ class DdAcceleration {
   static Result<DdAcceleration> create(const DdAccelerationParams& params);
 
   State step(const State& q, const Control& u, double dt) const noexcept;
+  // Wheel accelerations uniform within the limits.
   Control sample_control(Random& rng) const noexcept;
+  // The control for a hold of hold_s from q: with velocity_target_share, the accelerations
+  // that bring the wheel speeds from q's to a random forward speed and turn rate at the end of
+  // the hold (as far as the limits allow); otherwise uniform.
+  Control sample_control(const State& q, double hold_s, Random& rng) const noexcept;
   Control braking_control(const State& q) const noexcept;
   State brake_step(const State& q, double dt) const noexcept;
   bool is_stopped(const State& q) const noexcept { return q[3] == 0.0 && q[4] == 0.0; }

@@ -32,7 +32,8 @@ concept VehicleModel = requires(const V& v, const typename V::State& q,
   { V::kStateDim } -> std::convertible_to<int>;
   // One integration step of duration dt with control u held constant.
   { v.step(q, u, dt) } -> std::same_as<typename V::State>;
-  // A control drawn uniformly within the limits (for GRIP's random plans).
+  // A control drawn uniformly within the limits (for GRIP's random plans; SteersToVelocityTarget
+  // models mix in controls aimed at a velocity).
   { v.sample_control(rng) } -> std::same_as<typename V::Control>;
   // The braking contingency: the control to apply at q, and whether q is at rest.
   // brake_step integrates the maneuver for dt and lands exactly at rest when it stops within dt.
@@ -52,6 +53,15 @@ concept VehicleModel = requires(const V& v, const typename V::State& q,
   // A state at rest at pose (x, y, theta).
   { v.rest_state(0.0, 0.0, 0.0) } -> std::same_as<typename V::State>;
 };
+
+// A model whose planner controls depend on the state and the time they are held for
+// (sample_control(q, hold_s, rng)): acceleration-controlled vehicles aim them at a velocity.
+template <typename V>
+concept SteersToVelocityTarget =
+    VehicleModel<V> && requires(const V& v, const typename V::State& q, double hold_s,
+                                Random& rng) {
+      { v.sample_control(q, hold_s, rng) } -> std::same_as<typename V::Control>;
+    };
 
 // The explicit midpoint method (second order) for a model exposing derivative(q, u). Chosen
 // over RK4 for cost: the planner integrates millions of
@@ -107,6 +117,8 @@ bool states_match(const State& a, const State& b) noexcept {
 }
 
 Status validate_positive(std::string_view name, double value);
+// A fraction of the sampled controls: in [0, 1].
+Status validate_share(std::string_view name, double value);
 Status validate_finite_state(std::string_view vehicle, const double* values, int n);
 Status validate_footprint(std::string_view vehicle, const Footprint& footprint);
 
