@@ -86,8 +86,7 @@ DdAcceleration::Control DdAcceleration::sample_control(const State& q, double ho
   const double half_diff = std::clamp(params_.half_axle_m * turn_rate, -room, room);
   // Where the limit does not allow both in the hold, the turn comes first: it shapes the path,
   // and the speed follows on the next edge.
-  const double half_turn_accel =
-      std::clamp((half_diff - 0.5 * (q[4] - q[3])) / hold_s, -a, a);
+  const double half_turn_accel = std::clamp((half_diff - 0.5 * (q[4] - q[3])) / hold_s, -a, a);
   const double speed_room = a - std::abs(half_turn_accel);
   const double speed_accel =
       std::clamp((speed - 0.5 * (q[3] + q[4])) / hold_s, -speed_room, speed_room);

@@ -31,8 +31,8 @@ Status validate_positive(std::string_view name, double value) {
 
 Status validate_share(std::string_view name, double value) {
   if (!(value >= 0.0 && value <= 1.0)) {
-    return invalid_argument(std::string(name) + " must be in [0, 1] (got " +
-                            std::to_string(value) + ")");
+    return invalid_argument(std::string(name) + " must be in [0, 1] (got " + std::to_string(value) +
+                            ")");
   }
   return Ok{};
 }

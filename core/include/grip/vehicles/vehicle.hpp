@@ -57,11 +57,10 @@ concept VehicleModel = requires(const V& v, const typename V::State& q,
 // A model whose planner controls depend on the state and the time they are held for
 // (sample_control(q, hold_s, rng)): acceleration-controlled vehicles aim them at a velocity.
 template <typename V>
-concept SteersToVelocityTarget =
-    VehicleModel<V> && requires(const V& v, const typename V::State& q, double hold_s,
-                                Random& rng) {
-      { v.sample_control(q, hold_s, rng) } -> std::same_as<typename V::Control>;
-    };
+concept SteersToVelocityTarget = VehicleModel<V> &&
+    requires(const V& v, const typename V::State& q, double hold_s, Random& rng) {
+  { v.sample_control(q, hold_s, rng) } -> std::same_as<typename V::Control>;
+};
 
 // The explicit midpoint method (second order) for a model exposing derivative(q, u). Chosen
 // over RK4 for cost: the planner integrates millions of
