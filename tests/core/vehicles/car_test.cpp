@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "sampled_edge_ends.hpp"
+
 namespace grip {
 namespace {
 
@@ -86,47 +88,28 @@ TEST_F(CarTest, SampledControlsStayWithinLimits) {
   }
 }
 
-// Edges held 2.5 s from rest and from a turn: the share of them that end at full steering lock,
-// and the share that end reversing.
-struct EdgeEnds {
-  double at_full_lock = 0.0;
-  double reversing = 0.0;
-};
-EdgeEnds edge_ends(double velocity_target_share) {
-  CarParams params;
-  params.velocity_target_share = velocity_target_share;
-  const auto car = Car::create(params).value();
-  const double hold_s = 2.5;
-  const double dt = 0.05;
-  Car::State rest;
-  rest << 0.0, 0.0, 0.0, 0.0, 0.0;
-  Car::State turning;
-  turning << 0.0, 0.0, 0.0, 1.0, 0.6;
-  Random rng(5);
-  EdgeEnds ends;
-  const int per_start = 2'000;
-  for (const auto& from : {rest, turning}) {
-    for (int i = 0; i < per_start; ++i) {
-      const auto u = car.sample_control(from, hold_s, rng);
-      EXPECT_TRUE(car.validate_control(u));
-      auto q = from;
-      for (int k = 0; k < 50; ++k) q = car.step(q, u, dt);
-      EXPECT_TRUE(car.validate_state(q));
-      if (std::abs(q[4]) > 0.99 * params.max_steer_rad) ends.at_full_lock += 0.5 / per_start;
-      if (q[3] < 0.0) ends.reversing += 0.5 / per_start;
-    }
-  }
-  return ends;
-}
-
 TEST(CarSampling, ControlsAimedAtAVelocityEndEdgesBelowFullLockAndForward) {
+  // Edges of 2.5 s from rest and from a turn: the share that ends at full steering lock, and
+  // the share that ends reversing.
+  const auto edge_ends = [](double velocity_target_share) {
+    CarParams params;
+    params.velocity_target_share = velocity_target_share;
+    Car::State rest;
+    rest << 0.0, 0.0, 0.0, 0.0, 0.0;
+    Car::State turning;
+    turning << 0.0, 0.0, 0.0, 1.0, 0.6;
+    return testing::share_of_edge_ends(
+        Car::create(params).value(), {rest, turning}, 2.5,
+        [&](const Car::State& q) { return std::abs(q[4]) > 0.99 * params.max_steer_rad; },
+        [](const Car::State& q) { return q[3] < 0.0; });
+  };
   // Uniform controls: edges from a turn pile up at full lock, and a third of them reverse.
-  const EdgeEnds uniform = edge_ends(0.0);
-  EXPECT_GT(uniform.at_full_lock, 0.15);
-  EXPECT_GT(uniform.reversing, 0.2);
-  const EdgeEnds aimed = edge_ends(1.0);
-  EXPECT_LT(aimed.at_full_lock, 0.05);
-  EXPECT_EQ(aimed.reversing, 0.0);
+  const auto [uniform_at_full_lock, uniform_reversing] = edge_ends(0.0);
+  EXPECT_GT(uniform_at_full_lock, 0.15);
+  EXPECT_GT(uniform_reversing, 0.2);
+  const auto [aimed_at_full_lock, aimed_reversing] = edge_ends(1.0);
+  EXPECT_LT(aimed_at_full_lock, 0.05);
+  EXPECT_EQ(aimed_reversing, 0.0);
 }
 
 TEST_F(CarTest, InvalidParametersAndStatesAreRefused) {

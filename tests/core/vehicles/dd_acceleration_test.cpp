@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "sampled_edge_ends.hpp"
+
 namespace grip {
 namespace {
 
@@ -79,48 +81,29 @@ TEST_F(DdAccelerationTest, BrakingFromTopSpeedStopsWithinTheModelsStoppingTime) 
   EXPECT_NEAR(q[0], -7.5, 1e-6);  // v^2 / (2 a) = 9 / 1.2 backwards
 }
 
-// Edges held 2.5 s from rest and from a turn at the limit: the share of them that end turning
-// at the turn-rate limit, and the share that end driving backward.
-struct EdgeEnds {
-  double at_turn_limit = 0.0;
-  double backward = 0.0;
-};
-EdgeEnds edge_ends(double velocity_target_share) {
-  DdAccelerationParams params;
-  params.velocity_target_share = velocity_target_share;
-  const auto robot = DdAcceleration::create(params).value();
-  const double limit = 2.0 * params.half_axle_m * params.max_turn_rate_rad_s;  // wheel difference
-  const double hold_s = 2.5;
-  const double dt = 0.05;
-  DdAcceleration::State rest;
-  rest << 0.0, 0.0, 0.0, 0.0, 0.0;
-  DdAcceleration::State turning;
-  turning << 0.0, 0.0, 0.0, 1.0 - 0.5 * limit, 1.0 + 0.5 * limit;
-  Random rng(5);
-  EdgeEnds ends;
-  const int per_start = 2'000;
-  for (const auto& from : {rest, turning}) {
-    for (int i = 0; i < per_start; ++i) {
-      const auto u = robot.sample_control(from, hold_s, rng);
-      EXPECT_TRUE(robot.validate_control(u));
-      auto q = from;
-      for (int k = 0; k < 50; ++k) q = robot.step(q, u, dt);
-      EXPECT_TRUE(robot.validate_state(q));
-      if (std::abs(q[4] - q[3]) > 0.99 * limit) ends.at_turn_limit += 0.5 / per_start;
-      if (q[3] + q[4] < 0.0) ends.backward += 0.5 / per_start;
-    }
-  }
-  return ends;
-}
-
 TEST(DdAccelerationSampling, ControlsAimedAtAVelocityEndEdgesBelowTheTurnRateLimitAndForward) {
+  // Edges of 2.5 s from rest and from a turn at the limit: the share that ends turning at the
+  // turn-rate limit, and the share that ends driving backward.
+  const auto edge_ends = [](double velocity_target_share) {
+    DdAccelerationParams params;
+    params.velocity_target_share = velocity_target_share;
+    const double limit = 2.0 * params.half_axle_m * params.max_turn_rate_rad_s;  // wheel diff
+    DdAcceleration::State rest;
+    rest << 0.0, 0.0, 0.0, 0.0, 0.0;
+    DdAcceleration::State turning;
+    turning << 0.0, 0.0, 0.0, 1.0 - 0.5 * limit, 1.0 + 0.5 * limit;
+    return testing::share_of_edge_ends(
+        DdAcceleration::create(params).value(), {rest, turning}, 2.5,
+        [&](const DdAcceleration::State& q) { return std::abs(q[4] - q[3]) > 0.99 * limit; },
+        [](const DdAcceleration::State& q) { return q[3] + q[4] < 0.0; });
+  };
   // Uniform accelerations: most edges end spinning at the limit (the loops the robot drove).
-  const EdgeEnds uniform = edge_ends(0.0);
-  EXPECT_GT(uniform.at_turn_limit, 0.5);
-  EXPECT_GT(uniform.backward, 0.2);
-  const EdgeEnds aimed = edge_ends(1.0);
-  EXPECT_LT(aimed.at_turn_limit, 0.1);
-  EXPECT_EQ(aimed.backward, 0.0);
+  const auto [uniform_at_limit, uniform_backward] = edge_ends(0.0);
+  EXPECT_GT(uniform_at_limit, 0.5);
+  EXPECT_GT(uniform_backward, 0.2);
+  const auto [aimed_at_limit, aimed_backward] = edge_ends(1.0);
+  EXPECT_LT(aimed_at_limit, 0.1);
+  EXPECT_EQ(aimed_backward, 0.0);
 }
 
 TEST_F(DdAccelerationTest, InvalidParametersAndStatesAreRefused) {
