@@ -81,7 +81,7 @@ DdAcceleration::Control DdAcceleration::sample_control(const State& q, double ho
   const double a = params_.max_wheel_accel_m_s2;
   const double speed = rng.uniform(0.0, vmax);
   const double turn_rate = rng.uniform(-params_.max_turn_rate_rad_s, params_.max_turn_rate_rad_s);
-  // The target's wheel speeds within their limits, the turn given up first.
+  // The target's wheel speeds within their limits: near top speed, less of a turn.
   const double room = vmax - speed;
   const double half_diff = std::clamp(params_.half_axle_m * turn_rate, -room, room);
   // Where the limit does not allow both in the hold, the turn comes first: it shapes the path,
