@@ -196,9 +196,6 @@ TEST(PoolExhaustion, StopsGrowingSaysSoAndStillReturnsItsBestAnswer) {
   const OccupancyGrid grid = test::room_with_wall();
   const auto robot = Car::create({}).value();
   PlannerConfig config;
-  // 20 trajectories from rest facing the wall: with this seed they make progress around it
-  // (with so few, some seeds make none, and the best state is then no closer than the start).
-  config.seed = 6;
   config.max_edges = 41;
   config.max_trajectories = 20;
   auto planner = Planner<Car>::create(robot, grid, config).value();
