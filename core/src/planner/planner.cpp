@@ -783,16 +783,19 @@ EdgeHandle Planner<V>::expand_from(TreeState from) noexcept {
   const bool brake =
       config_.braking_control_fraction > 0.0 && rng_.uniform01() < config_.braking_control_fraction;
   const State start = tree_.edge_state(from.edge, from.index);
+  const auto draw_hold_steps = [this] {
+    return min_plan_steps_ + rng_.below(max_plan_steps_ - min_plan_steps_ + 1U);
+  };
   Control u;
   std::uint32_t steps = 0;
   if constexpr (SteersToVelocityTarget<V>) {
     // The control depends on the hold, so the hold is drawn first.
-    steps = min_plan_steps_ + rng_.below(max_plan_steps_ - min_plan_steps_ + 1U);
+    steps = draw_hold_steps();
     u = brake ? vehicle_.braking_control(start)
               : vehicle_.sample_control(start, step_time(steps), rng_);
   } else {
     u = brake ? vehicle_.braking_control(start) : vehicle_.sample_control(rng_);
-    steps = min_plan_steps_ + rng_.below(max_plan_steps_ - min_plan_steps_ + 1U);
+    steps = draw_hold_steps();
   }
   const std::uint32_t start_step = tree_.step_of(from.edge, from.index);
   const Propagated p = propagate(t, start, start_step, u, steps);
