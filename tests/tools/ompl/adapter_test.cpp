@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -201,6 +202,75 @@ TYPED_TEST(OmplAdapter, SampledControlsAreTheModelsAdmissibleOnes) {
     EXPECT_TRUE(p.vehicle.validate_control(u).ok()) << u.transpose();
   }
   si->freeControl(c);
+}
+
+// Where uniform controls drive the velocity state: dd-accel's turn-rate limit, the car's full
+// lock (the vehicles' sampling tests).
+template <VehicleModel V>
+bool at_turn_limit(const V& vehicle, const typename V::State& q) {
+  const auto& params = vehicle.params();
+  if constexpr (std::is_same_v<V, DdAcceleration>) {
+    return std::abs(q[4] - q[3]) > 0.99 * 2.0 * params.half_axle_m * params.max_turn_rate_rad_s;
+  } else {
+    return std::abs(q[4]) > 0.99 * params.max_steer_rad;
+  }
+}
+
+template <typename T>
+class OmplAimedSampler : public ::testing::Test {};
+using AimingVehicles = ::testing::Types<DdAcceleration, Car>;
+TYPED_TEST_SUITE(OmplAimedSampler, AimingVehicles);
+
+TYPED_TEST(OmplAimedSampler, GivenTheStateItAimsAtAVelocityAsThePlannersSamplerDoes) {
+  // GIVEN the sampler OMPL's planners get, and a state turning hard at the scene's start
+  Problem<TypeParam> p(default_model<TypeParam>());
+  const oc::SpaceInformationPtr& si = p.ompl.setup->getSpaceInformation();
+  auto sampler = si->allocControlSampler();
+  auto q = p.vehicle.rest_state(p.scene->start_x_m, p.scene->start_y_m, p.scene->start_theta_rad);
+  if constexpr (std::is_same_v<TypeParam, DdAcceleration>) {
+    const double limit = 2.0 * p.vehicle.params().half_axle_m * p.vehicle.max_turn_rate_rad_s();
+    q[3] = 1.0 - 0.5 * limit;
+    q[4] = 1.0 + 0.5 * limit;
+  } else {
+    q[3] = 1.0;
+    q[4] = 0.6;
+  }
+  ob::State* from = si->allocState();
+  ob::State* to = si->allocState();
+  to_ompl<TypeParam>(q, from);
+  oc::Control* control = si->allocControl();
+  oc::Control* previous = si->allocControl();
+  sampler->sample(previous);
+  const ProblemSettings settings = settings_for(p.planner->config());
+  const unsigned mean_steps = (settings.min_steps + settings.max_steps) / 2;
+
+  // WHEN controls are held for the mean duration: drawn without the state, with it (as OMPL's
+  // control planners draw them), and as the next control after another
+  const auto share_at_limit = [&](auto draw) {
+    constexpr int kDraws = 2'000;
+    int at_limit = 0;
+    for (int i = 0; i < kDraws; ++i) {
+      draw();
+      const auto u = to_core_control<TypeParam>(control);
+      EXPECT_TRUE(p.vehicle.validate_control(u).ok()) << u.transpose();
+      si->propagate(from, control, static_cast<int>(mean_steps), to);
+      if (at_turn_limit(p.vehicle, to_core<TypeParam>(to))) ++at_limit;
+    }
+    return static_cast<double>(at_limit) / kDraws;
+  };
+  const double uniform = share_at_limit([&] { sampler->sample(control); });
+  const double given_state = share_at_limit([&] { sampler->sample(control, from); });
+  const double next = share_at_limit([&] { sampler->sampleNext(control, previous, from); });
+
+  // THEN with the state, the model's share of aimed controls (half) keeps edges off the limit
+  // that uniform controls end at
+  EXPECT_GT(uniform, 0.3);
+  EXPECT_LT(given_state, 0.75 * uniform) << "uniform " << uniform;
+  EXPECT_LT(next, 0.75 * uniform) << "uniform " << uniform;
+  si->freeControl(previous);
+  si->freeControl(control);
+  si->freeState(to);
+  si->freeState(from);
 }
 
 TEST(OmplPlanners, EveryPlannerOfTheComparisonIsCreatedAndAnUnknownOneRefused) {
