@@ -1,6 +1,7 @@
 // The OMPL adapter: OMPL's own sanity checks on the state space, propagation through OMPL equal
 // to the core's propagation of the same control (exactly), the validity checker and the goal
-// answering as the planner's checker and GoalRegion do, controls within the model's limits.
+// answering as the planner's checker and GoalRegion do, controls within the model's limits and,
+// given the state, aimed at a velocity as the planner's are.
 
 #include "adapter.hpp"
 
