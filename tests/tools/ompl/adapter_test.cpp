@@ -205,15 +205,19 @@ TYPED_TEST(OmplAdapter, SampledControlsAreTheModelsAdmissibleOnes) {
   si->freeControl(c);
 }
 
+// dd-accel's turn-rate limit as a difference of wheel speeds.
+double wheel_speed_difference_limit(const DdAcceleration& vehicle) {
+  return 2.0 * vehicle.params().half_axle_m * vehicle.max_turn_rate_rad_s();
+}
+
 // Where uniform controls drive the velocity state: dd-accel's turn-rate limit, the car's full
 // lock (the vehicles' sampling tests).
 template <VehicleModel V>
 bool at_turn_limit(const V& vehicle, const typename V::State& q) {
-  const auto& params = vehicle.params();
   if constexpr (std::is_same_v<V, DdAcceleration>) {
-    return std::abs(q[4] - q[3]) > 0.99 * 2.0 * params.half_axle_m * params.max_turn_rate_rad_s;
+    return std::abs(q[4] - q[3]) > 0.99 * wheel_speed_difference_limit(vehicle);
   } else {
-    return std::abs(q[4]) > 0.99 * params.max_steer_rad;
+    return std::abs(q[4]) > 0.99 * vehicle.params().max_steer_rad;
   }
 }
 
@@ -229,7 +233,7 @@ TYPED_TEST(OmplAimedSampler, GivenTheStateItAimsAtAVelocityAsThePlannersSamplerD
   auto sampler = si->allocControlSampler();
   auto q = p.vehicle.rest_state(p.scene->start_x_m, p.scene->start_y_m, p.scene->start_theta_rad);
   if constexpr (std::is_same_v<TypeParam, DdAcceleration>) {
-    const double limit = 2.0 * p.vehicle.params().half_axle_m * p.vehicle.max_turn_rate_rad_s();
+    const double limit = wheel_speed_difference_limit(p.vehicle);
     q[3] = 1.0 - 0.5 * limit;
     q[4] = 1.0 + 0.5 * limit;
   } else {
