@@ -21,6 +21,7 @@
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "plan.h"
+#include "test_paths.hpp"
 
 namespace grip::platform::dds {
 namespace {

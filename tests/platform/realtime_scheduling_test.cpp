@@ -1,4 +1,5 @@
 #include "grip/platform/scheduling.hpp"
+#include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 #include <sched.h>

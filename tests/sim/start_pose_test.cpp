@@ -11,6 +11,7 @@
 #include "grip/sim/range_sensor.hpp"
 #include "grip/vehicles/car.hpp"
 #include "grip/world/collision_checker.hpp"
+#include "test_paths.hpp"
 
 namespace grip::sim {
 namespace {

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace grip::testing {
 
 inline const std::string kGrip = GRIP_BINARY_DIR "/bin/grip";

@@ -20,6 +20,7 @@
 #include "child_process.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "test_paths.hpp"
 #include "vehicle_side.hpp"
 
 namespace grip::rt::dds {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "comparison.hpp"
+#include "test_paths.hpp"
 
 namespace grip::ompl_bridge {
 namespace {
