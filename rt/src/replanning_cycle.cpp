@@ -24,8 +24,6 @@ std::string_view restart_cause_name(RestartCause cause) noexcept {
   return name_in(kRestartCauseNames, cause);
 }
 
-double default_safety_margin_ms(double budget_ms) noexcept { return budget_ms / 5.0; }
-
 void CommitReserve::note(std::int64_t commit_ns) noexcept {
   samples_[next_] = commit_ns;
   next_ = (next_ + 1) % kWindow;

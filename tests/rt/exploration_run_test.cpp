@@ -1,20 +1,18 @@
-// Exploration end to end without the simulator: a loop plays the sensor (it reveals the
-// ground-truth cells within the sensing radius that are in sight through the ground truth),
-// chooses the frontier target and the path of section 3 every cycle, runs the replanning cycle
-// on a fake clock and drives the vehicle along the committed plan for T. The small room must be
-// explored (coverage of the reachable free space) without a collision and in bounded cycles.
+// Exploration end to end without the transport: a loop plays the sensor (it reveals the
+// ground-truth cells within the sensing radius that are in sight through the ground truth) and
+// the vehicle's controller (sim::PlanExecutor, as `grip sim` in lockstep), and the planner is the
+// replanning session with the exploration driver, as the planner participant runs them. The small
+// room must be explored (coverage of the reachable free space) without a collision and in bounded
+// cycles.
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <string>
 
-#include "grip/exploration/frontier.hpp"
-#include "grip/exploration/path_selector.hpp"
-#include "grip/planner/contingency.hpp"
-#include "grip/rt/replanning_cycle.hpp"
+#include "grip/rt/exploration_driver.hpp"
+#include "grip/rt/replanning_session.hpp"
+#include "grip/sim/plan_executor.hpp"
 #include "grip/vehicles/dd_velocity.hpp"
 
 namespace grip::rt {
@@ -32,7 +30,8 @@ struct ExplorationReport {
 
 // Reveals the true value of every cell within radius_m of (x, y) whose centre is in sight: the
 // points sampled every quarter cell on the way there lie in truly free cells.
-void sense(const OccupancyGrid& truth, OccupancyGrid& map, double x, double y, double radius_m) {
+void sense(const OccupancyGrid& truth, OccupancyGrid& map, double x, double y, double radius_m,
+           MapChanges& changes) {
   int rx = 0;
   int ry = 0;
   if (!truth.to_cell(x, y, rx, ry)) return;
@@ -54,7 +53,7 @@ void sense(const OccupancyGrid& truth, OccupancyGrid& map, double x, double y, d
         clear = truth.to_cell(x + f * (tx - x), y + f * (ty - y), sx, sy) &&
                 ((sx == cx && sy == cy) || truth.at(sx, sy) == Cell::kFree);
       }
-      if (clear) map.set(cx, cy, truth.at(cx, cy));
+      if (clear) changes.apply(map, CellBox{cx, cy, cx, cy}, truth.at(cx, cy));
     }
   }
 }
@@ -63,81 +62,82 @@ template <VehicleModel V>
 ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double start_x,
                           double start_y, double start_theta, int max_cycles) {
   ExplorationReport report;
-  OccupancyGrid map = OccupancyGrid::create(truth.width(), truth.height(), truth.resolution(),
-                                            truth.origin_x(), truth.origin_y(), Cell::kUnknown)
-                          .value();
+  OccupancyGrid unknown = OccupancyGrid::create(truth.width(), truth.height(), truth.resolution(),
+                                                truth.origin_x(), truth.origin_y(), Cell::kUnknown)
+                              .value();
   const double sensing_m = truth.width_m() / 10.0;  // the paper's sensor
   // The start is seen, and the chassis' own footprint is known free (the vehicle stands there).
-  map.fill_rect(start_x - 0.7, start_y - 0.7, start_x + 0.7, start_y + 0.7, Cell::kFree);
-  sense(truth, map, start_x, start_y, sensing_m);
+  unknown.fill_rect(start_x - 0.7, start_y - 0.7, start_x + 0.7, start_y + 0.7, Cell::kFree);
+  MapChanges first_sweep;
+  sense(truth, unknown, start_x, start_y, sensing_m, first_sweep);
 
-  CycleConfig config;
+  SessionConfig config;
   config.cycle_s = 0.1;
-  config.safety_margin_ns = 2'000'000;
-  PlannerConfig planner_config;
-  planner_config.max_edges = 20'000;
-  planner_config.max_trajectories = 10'000;
-  auto cycle = ReplanningCycle<V>::create(vehicle, map, planner_config, config).value();
-  FrontierConfig frontier_config;
-  frontier_config.clearance_m = planner_config.rho_clearance_m;
-  auto frontiers =
-      FrontierMap::create(map.width(), map.height(), map.resolution(), frontier_config).value();
-  PathSelectionConfig selection;
-  selection.sensing_radius_m = sensing_m;
-  auto selector = PathSelector::create(map.width(), map.height(), map.resolution(),
-                                       planner_config.max_edges, selection)
-                      .value();
-  auto clearance = ClearanceMap::create(map.width(), map.height(), map.resolution()).value();
-  const CollisionChecker truth_checker =
-      CollisionChecker::create(truth, vehicle.footprint(), 0.0).value();
+  config.lockstep_edges = 1000;
+  auto session = ReplanningSession<V>::create(vehicle, std::move(unknown), config).value();
+  OccupancyGrid& map = session.grid();
+  if (Status s = session.create_cycle(1.0, /*lockstep=*/true, /*explore=*/true); !s) {
+    ADD_FAILURE() << s.error().message;
+    return report;
+  }
+  ExplorationDriverConfig exploration;
+  exploration.refresh_cycles = 1;
+  exploration.sensing_radius_m = sensing_m;
+  auto driver = ExplorationDriver<V>::create(map, exploration, session.sizing().planner).value();
 
   const typename V::State start = vehicle.rest_state(start_x, start_y, start_theta);
-  EXPECT_TRUE(cycle.start(start, GoalRegion{start_x, start_y, 1.0}));
-  std::int64_t now = 0;
-  const double dt = planner_config.integration_step_s;
-  const auto steps_per_cycle = static_cast<int>(std::lround(config.cycle_s / dt));
+  sim::ExecutorConfig executor_config;
+  executor_config.step_s = session.sizing().planner.integration_step_s;
+  executor_config.refuse_start_mismatch = true;
+  auto executor = sim::PlanExecutor<V>::create(vehicle, truth, start, 0, executor_config).value();
+  VehicleSample sample;
+  sample.lockstep = true;
+  const auto measure = [&] {
+    for (int i = 0; i < V::kStateDim; ++i) {
+      sample.state[static_cast<std::size_t>(i)] = executor.state()[i];
+    }
+    sample.stamp_ns = static_cast<std::uint64_t>(executor.now_ns());
+    ++sample.sequence_number;
+    sample.plan_cycle = executor.executing_tag();
+  };
+  measure();
+  EXPECT_TRUE(session.start(sample, GoalRegion{start_x, start_y, 1.0}));
+  std::int64_t clock = 0;  // times the phases only: lockstep grows by edge count
+  const auto now = [&clock] { return clock += 20'000; };
+  const auto cycle_ns = static_cast<std::int64_t>(std::llround(config.cycle_s * 1e9));
   for (; report.cycles < max_cycles; ++report.cycles) {
-    // The vehicle is at the root of the tree: where this cycle's plan starts.
-    const typename V::State here = cycle.plan_start();
-    sense(truth, map, here[0], here[1], sensing_m);
-    clearance.compute(map);
-    if (frontiers.update(map, clearance, here[0], here[1]) != ExplorationStatus::kTarget) {
-      report.complete = frontiers.status() == ExplorationStatus::kComplete;
+    MapChanges changes;
+    if (report.cycles > 0) {
+      measure();
+      sense(truth, map, sample.state[0], sample.state[1], sensing_m, changes);
+    }
+    session.note_state(sample);
+    session.set_plan_start_after(sample);
+    session.check_vehicle_follows();
+    session.note_map_changes(changes);
+    driver.update(session.cycle(), map, session.plan_start_ns(), changes.applied, true);
+    if (driver.explored()) {
+      report.complete = true;
       break;
     }
-    cycle.set_goal(GoalCells{frontiers.approach_cells()});
-    selector.set_target(map, frontiers.target_cells());
-    // Map updates only turn unknown cells into known ones: nothing free becomes blocked.
-    cycle.note_newly_blocked(CellBox{});
-    const std::int64_t release = now;
-    const CycleOutcome out = cycle.run([&now] { return now += 20'000; }, release + 25'000'000,
-                                       [&](const Planner<V>& planner) {
-                                         return selector.select(planner, cycle.cycle_steps()).state;
-                                       });
-    now = release + 25'000'000;
-    // Execute the next T: along the committed plan, or braking.
-    typename V::State q = cycle.plan_start();
-    int left = steps_per_cycle;
-    if (out.plan_available) {
-      for (const PlanStep& step : cycle.plan()) {
-        const typename V::Control u(step.control[0], step.control[1]);
-        for (long i = 0; i < std::lround(step.duration_s / dt) && left > 0; ++i, --left) {
-          const typename V::State next = vehicle.step(q, u, dt);
-          report.distance_m += std::hypot(next[0] - q[0], next[1] - q[1]);
-          q = next;
-          if (!truth_checker.is_free(q[0], q[1], q[2])) ++report.collisions;
-        }
-      }
-    } else {
+    const CycleOutcome out = session.run(
+        now, 0,
+        [&](const Planner<V>& planner) {
+          return driver.choose_plan_end(planner, session.cycle().cycle_steps());
+        },
+        [] {});
+    const SentPlan<V> sent = session.send_plan(out);
+    const auto start_ns = static_cast<std::int64_t>(sent.start_ns);
+    if (sent.steps.empty()) {
       ++report.braking_cycles;
+      executor.submit_empty(start_ns);
+    } else {
+      executor.submit(sent.steps, start_ns, sent.from, sent.cycle);
     }
-    for (; left > 0; --left) {
-      const typename V::State next = vehicle.brake_step(q, dt);
-      report.distance_m += std::hypot(next[0] - q[0], next[1] - q[1]);
-      q = next;
-      if (!truth_checker.is_free(q[0], q[1], q[2])) ++report.collisions;
-    }
+    executor.run_until(executor.now_ns() + cycle_ns);
   }
+  report.collisions = static_cast<int>(executor.stats().collisions);
+  report.distance_m = executor.stats().distance_m;
   // Coverage of the free space reachable from the start (8-connected, any width).
   auto reach = DistanceField::create(truth.width(), truth.height(), truth.resolution()).value();
   int sx = 0;
@@ -153,8 +153,7 @@ ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double s
     if (map.at(c) != Cell::kUnknown) ++known;
   }
   report.coverage = known / reachable;
-  report.mean_speed_fraction =
-      report.distance_m / (report.cycles * config.cycle_s * vehicle.max_speed_m_s());
+  report.mean_speed_fraction = executor.mean_speed_fraction();
   return report;
 }
 

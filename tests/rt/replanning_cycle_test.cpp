@@ -117,12 +117,6 @@ TEST(CommitReserve, IsThePriorUntilMeasuredThenThe90thPercentileOfRecentCommits)
   EXPECT_EQ(reserve.ns(), 300'000);
 }
 
-TEST(SafetyMargin, IsAFifthOfTheBudget) {
-  EXPECT_DOUBLE_EQ(default_safety_margin_ms(25.0), 5.0);
-  EXPECT_DOUBLE_EQ(default_safety_margin_ms(12.5), 2.5);  // time scale 2
-  EXPECT_DOUBLE_EQ(default_safety_margin_ms(2.5), 0.5);   // time scale 10
-}
-
 TEST_F(ReplanningCycleTest, LockstepGrowsItsEdgesWhateverTheClockAndReproducesARun) {
   // A clock that races ahead: a deadline would end growth at once, an edge budget does not.
   const auto racing = [this] { return clock.now += 1'000'000'000; };

@@ -37,9 +37,9 @@
 
 #include "child.hpp"
 #include "commands.hpp"
+#include "grip/link/vehicle_link.hpp"
 #include "grip/platform/clock.hpp"
 #include "grip/platform/dds/participant.hpp"
-#include "grip/rt/dds/vehicle_link.hpp"
 #include "grip/rt/latency_histogram.hpp"
 #include "grip/scenes/scenes.hpp"
 #include "grip/sim/plan_executor.hpp"
@@ -108,10 +108,10 @@ struct PlannerSide {
 // rest at the start of "rooms".
 Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
   Scene scene = make_scene("rooms").value();
-  rt::dds::VehicleLinkConfig config;
+  link::VehicleLinkConfig config;
   config.domain = o.domain;
   config.kind = VehicleKind::kDdVelocity;
-  auto link = rt::dds::VehicleLink::create(config, scene.grid);
+  auto link = link::VehicleLink::create(config, scene.grid);
   if (!link) return link.error();
   auto self = self_executable();
   if (!self) return self.error();
@@ -197,7 +197,7 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
       state.stamp_ns = static_cast<std::uint64_t>(executor->now_ns());
       state.sequence_number = ++sequence;
       state.kind = grip_msg_DD_VELOCITY;
-      rt::dds::state_to_wire<DdVelocity>(q, state.state, state.state_dim);
+      link::state_to_wire<DdVelocity>(q, state.state, state.state_dim);
       state.time_scale = 1.0;
       state.plan_cycle = executor->executing_tag();
       static_cast<void>((*link)->publish_state(state));

@@ -27,6 +27,8 @@
 #include "grip/platform/clock.hpp"
 #include "grip/platform/load_generator.hpp"
 #include "grip/platform/overrun_watcher.hpp"
+#include "grip/rt/cycle_sizing.hpp"
+#include "grip/rt/map_changes.hpp"
 #include "grip/rt/periodic_loop.hpp"
 #include "grip/rt/replanning_cycle.hpp"
 #include "grip/rt/triple_buffer.hpp"
@@ -169,22 +171,20 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
                platform::OverrunWatcher& overruns, platform::LoadGenerator& load,
                platform::PolicyRequest policy) {
   const double period_s = o.period_ms / 1e3;
-  // The planner integrates in whole fractions of the period, at most 50 ms per step.
-  PlannerConfig planner_config;
-  planner_config.integration_step_s = integration_step_for_cycle(period_s);
-  planner_config.seed = o.seed;
-  // The pool bounds the tree, and retaining a tree costs time in proportion to its size (it is
-  // re-timed, re-checked and re-scored every cycle): 400 edges per millisecond of budget keeps
-  // a full tree's retainment near a quarter of the budget on the machines measured here.
-  planner_config.max_edges =
-      o.max_edges != 0 ? o.max_edges
-                       : static_cast<std::uint32_t>(std::clamp(400.0 * o.budget_ms, 2000.0, 2e5));
-  planner_config.max_trajectories = planner_config.max_edges / 2;
-  rt::CycleConfig cycle_config;
-  cycle_config.cycle_s = period_s;
-  const double margin_ms =
-      o.margin_ms >= 0.0 ? o.margin_ms : rt::default_safety_margin_ms(o.budget_ms);
-  cycle_config.safety_margin_ns = static_cast<std::int64_t>(margin_ms * 1e6);
+  rt::CycleBudget budget;
+  budget.cycle_s = period_s;
+  budget.budget_ms = o.budget_ms;
+  budget.margin_ms = o.margin_ms;
+  budget.max_edges = o.max_edges;
+  budget.seed = o.seed;
+  auto sized = rt::size_cycle(budget);
+  if (!sized) {
+    std::cerr << "grip stress: " << sized.error().message << "\n";
+    return 2;
+  }
+  const PlannerConfig& planner_config = sized->planner;
+  const rt::CycleConfig& cycle_config = sized->cycle;
+  const double margin_ms = sized->margin_ms;
   auto cycle = rt::ReplanningCycle<V>::create(vehicle, scene.grid, planner_config, cycle_config);
   if (!cycle) {
     std::cerr << "grip stress: " << cycle.error().message << "\n";
@@ -208,19 +208,11 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   auto body = [&, patches = patches.get(), goals = goals.get(), pose = pose.get()](
                   std::int64_t, std::int64_t deadline) noexcept {
     MapPatch patch{};
-    CellBox blocked;  // only cells that become non-free can invalidate the tree
+    rt::MapChanges changes;  // the clearance is refreshed near the patches only, as on a vehicle
     while (patches->try_pop(patch)) {
-      for (int y = patch.y0; y <= patch.y1; ++y) {
-        for (int x = patch.x0; x <= patch.x1; ++x) {
-          if (grid.in_bounds(x, y)) grid.set(x, y, patch.value);
-        }
-      }
-      const CellBox box{patch.x0, patch.y0, patch.x1, patch.y1};
-      // The clearance is refreshed near the patches only, as on a vehicle.
-      cycle->note_changed(box);
-      if (patch.value != Cell::kFree) blocked.add(box);
+      changes.apply(grid, CellBox{patch.x0, patch.y0, patch.x1, patch.y1}, patch.value);
     }
-    cycle->note_newly_blocked(blocked);
+    rt::note_map_changes(*cycle, changes);
     GoalRegion goal{};
     while (goals->try_pop(goal)) cycle->set_goal(goal);
     const rt::CycleOutcome out = cycle->run([] { return platform::now_ns(); }, deadline);

@@ -8,8 +8,8 @@
 #include <random>
 #include <thread>
 
+#include "grip/link/vehicle_link.hpp"
 #include "grip/platform/clock.hpp"
-#include "grip/rt/dds/vehicle_link.hpp"
 #include "grip/sim/coverage.hpp"
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/range_sensor.hpp"
@@ -39,14 +39,14 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
                                      truth.origin_x(), truth.origin_y(), Cell::kUnknown);
   if (!known) return known.error();
 
-  rt::dds::VehicleLinkConfig link_config;
+  link::VehicleLinkConfig link_config;
   link_config.domain = config.domain;
   link_config.dds_config = config.dds_config;
   link_config.kind = V::kKind;
   link_config.timing.cycle = std::chrono::nanoseconds(std::llround(config.cycle_s * 1e9));
   link_config.timing.time_scale = config.time_scale;
   link_config.timing.liveliness_lease = config.liveliness_lease;
-  auto link = rt::dds::VehicleLink::create(link_config, std::move(known).value());
+  auto link = link::VehicleLink::create(link_config, std::move(known).value());
   if (!link) return link.error();
   OccupancyGrid& sensed = (*link)->map();
 
@@ -71,8 +71,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   const auto publish_state = [&] {
     state_msg.stamp_ns = static_cast<std::uint64_t>(executor->now_ns());
     ++state_msg.sequence_number;
-    state_msg.kind = rt::dds::to_wire(V::kKind);
-    rt::dds::state_to_wire<V>(executor->state(), state_msg.state, state_msg.state_dim);
+    state_msg.kind = link::to_wire(V::kKind);
+    link::state_to_wire<V>(executor->state(), state_msg.state, state_msg.state_dim);
     state_msg.time_scale = config.lockstep ? 1.0 : config.time_scale;
     state_msg.lockstep = config.lockstep;
     // The plan executed in the tick that ended now (plans starting now have not started yet).

@@ -27,7 +27,8 @@ namespace grip::rt::dds {
 namespace {
 
 using namespace std::chrono_literals;
-using testing::VehicleSide;
+using link::testing::VehicleSide;
+using namespace ::grip::link;
 
 PlannerParticipantConfig planner_config(platform::dds::DomainId domain, double duration_s) {
   PlannerParticipantConfig config;

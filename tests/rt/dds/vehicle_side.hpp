@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <memory>
 
+#include "grip/link/vehicle_link.hpp"
 #include "grip/platform/clock.hpp"
-#include "grip/rt/dds/vehicle_link.hpp"
 #include "grip/scenes/scenes.hpp"
 
-namespace grip::rt::dds::testing {
+namespace grip::link::testing {
 
 class VehicleSide {
  public:
@@ -71,4 +71,4 @@ class VehicleSide {
   std::uint64_t state_sequence_ = 0;
 };
 
-}  // namespace grip::rt::dds::testing
+}  // namespace grip::link::testing

@@ -25,8 +25,8 @@ namespace grip::rt {
 struct CycleConfig {
   double cycle_s = 0.05;  // T: the duration of every cycle, a whole number of integration steps
   // The planner stops growing this long before the deadline, and besides early enough to
-  // commit the plan (CommitReserve): room for the stalls of a shared machine (several
-  // milliseconds on the VMs measured here) and for the caller's work after the cycle.
+  // commit the plan (CommitReserve): room for the stalls of a shared machine and for the
+  // caller's work after the cycle (default_safety_margin_ms, cycle_sizing.hpp).
   std::int64_t safety_margin_ns = 5'000'000;
   // What committing is taken to cost until the first commit is timed (CommitReserve); 0:
   // nothing.
@@ -38,13 +38,6 @@ struct CycleConfig {
   // only orders the search (collisions are always checked on the current map).
   std::uint32_t rho_refresh_cycles = 1;
 };
-
-// A safety margin for a cycle's budget: a fifth of it, for the caller's work after the cycle and
-// the smaller delays of a shared machine. The commit has its own reserve (CommitReserve). No
-// floor of a few milliseconds for the VM's stalls: they last 4 to 40 ms here, more than any
-// margin a short budget (2.5 ms at time scale 10) could spare, and a floor of 2 ms left such a
-// budget no time to grow the tree; a stalled cycle misses, and says so.
-double default_safety_margin_ms(double budget_ms) noexcept;
 
 // The time the next commit will take, learned from the cycles before, so that growth stops
 // early enough for it. Exploration's commit (the path selector's pass over the tree, then the

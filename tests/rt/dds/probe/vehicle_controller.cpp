@@ -15,8 +15,7 @@ int main(int argc, char** argv) {
   }
   const auto domain =
       static_cast<grip::platform::dds::DomainId>(std::strtoul(argv[1], nullptr, 10));
-  auto vehicle =
-      grip::rt::dds::testing::VehicleSide::create(domain, grip::VehicleKind::kDdVelocity);
+  auto vehicle = grip::link::testing::VehicleSide::create(domain, grip::VehicleKind::kDdVelocity);
   if (!vehicle || !vehicle->publish_goal()) {
     std::fprintf(stderr, "vehicle controller probe: DDS set-up failed\n");
     return 1;

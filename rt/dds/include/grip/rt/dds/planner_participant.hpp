@@ -43,7 +43,6 @@
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/memory.hpp"
 #include "grip/platform/scheduling.hpp"
-#include "grip/rt/dds/messages.hpp"
 #include "grip/rt/latency_histogram.hpp"
 #include "grip/rt/periodic_loop.hpp"
 #include "grip/vehicles/vehicle.hpp"

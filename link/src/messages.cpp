@@ -1,4 +1,4 @@
-#include "grip/rt/dds/messages.hpp"
+#include "grip/link/messages.hpp"
 
 #include <array>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "grip/common/enum_names.hpp"
 
-namespace grip::rt::dds {
+namespace grip::link {
 
 namespace {
 
@@ -223,4 +223,4 @@ GRIP_INSTANTIATE_MESSAGES(DdAcceleration)
 GRIP_INSTANTIATE_MESSAGES(Car)
 #undef GRIP_INSTANTIATE_MESSAGES
 
-}  // namespace grip::rt::dds
+}  // namespace grip::link

@@ -1,7 +1,7 @@
 // Map synchronisation never silently diverges: over a lossy channel, every loss is seen as a
 // gap, a snapshot heals it, and the receiver's map then equals the sender's cell for cell.
 
-#include "grip/rt/dds/map_sync.hpp"
+#include "grip/link/map_sync.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include "grip/common/random.hpp"
 
-namespace grip::rt::dds {
+namespace grip::link {
 namespace {
 
 OccupancyGrid unknown_map(int w = 300, int h = 300) {
@@ -175,4 +175,4 @@ TEST(MapSync, TooLargeAMapIsRefused) {
 }
 
 }  // namespace
-}  // namespace grip::rt::dds
+}  // namespace grip::link

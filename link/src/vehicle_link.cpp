@@ -1,9 +1,9 @@
-#include "grip/rt/dds/vehicle_link.hpp"
+#include "grip/link/vehicle_link.hpp"
 
 #include <chrono>
 #include <utility>
 
-namespace grip::rt::dds {
+namespace grip::link {
 
 namespace pdds = platform::dds;
 
@@ -170,4 +170,4 @@ bool VehicleLink::planner_alive() const {
   return live.ok() && live->alive_count > 0;
 }
 
-}  // namespace grip::rt::dds
+}  // namespace grip::link

@@ -1,10 +1,10 @@
-#include "grip/rt/dds/map_sync.hpp"
+#include "grip/link/map_sync.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <utility>
 
-namespace grip::rt::dds {
+namespace grip::link {
 
 namespace {
 
@@ -166,4 +166,4 @@ bool MapReceiver::should_request(std::int64_t now_ns, std::int64_t retry_ns) con
   return !last_request_ns_ || now_ns - *last_request_ns_ >= retry_ns;
 }
 
-}  // namespace grip::rt::dds
+}  // namespace grip::link

@@ -1,8 +1,8 @@
-#include "grip/rt/dds/topics.hpp"
+#include "grip/link/topics.hpp"
 
 #include <algorithm>
 
-namespace grip::rt::dds {
+namespace grip::link {
 
 namespace {
 
@@ -46,4 +46,4 @@ platform::dds::Qos goal_qos(const LinkTiming& timing) {
 }
 platform::dds::Qos planner_status_qos(const LinkTiming& timing) { return keep_last(timing, 1); }
 
-}  // namespace grip::rt::dds
+}  // namespace grip::link

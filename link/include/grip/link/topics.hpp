@@ -24,7 +24,7 @@
 
 #include "grip/platform/dds/qos.hpp"
 
-namespace grip::rt::dds {
+namespace grip::link {
 
 inline constexpr const char* kVehicleStateTopic = "grip_vehicle_state";
 inline constexpr const char* kPlanTopic = "grip_plan";
@@ -50,4 +50,4 @@ platform::dds::Qos map_request_qos(const LinkTiming& timing);
 platform::dds::Qos goal_qos(const LinkTiming& timing);
 platform::dds::Qos planner_status_qos(const LinkTiming& timing);
 
-}  // namespace grip::rt::dds
+}  // namespace grip::link

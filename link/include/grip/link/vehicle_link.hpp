@@ -11,18 +11,18 @@
 
 #include "goal.h"
 #include "grip/common/result.hpp"
+#include "grip/link/map_sync.hpp"
+#include "grip/link/topics.hpp"
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/waitset.hpp"
 #include "grip/platform/dds/writer.hpp"
-#include "grip/rt/dds/map_sync.hpp"
-#include "grip/rt/dds/topics.hpp"
 #include "map_update.h"
 #include "plan.h"
 #include "planner_status.h"
 #include "vehicle_state.h"
 
-namespace grip::rt::dds {
+namespace grip::link {
 
 struct VehicleLinkConfig {
   platform::dds::DomainId domain = 0;
@@ -101,4 +101,4 @@ class VehicleLink {
   std::uint64_t map_writes_failed_ = 0;
 };
 
-}  // namespace grip::rt::dds
+}  // namespace grip::link

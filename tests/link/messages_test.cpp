@@ -1,7 +1,7 @@
 // Every kind of bad input the planner or the controller can receive is rejected with its reason
 // and the field it concerns; good input passes.
 
-#include "grip/rt/dds/messages.hpp"
+#include "grip/link/messages.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <limits>
 #include <vector>
 
-namespace grip::rt::dds {
+namespace grip::link {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -196,4 +196,4 @@ TEST(Messages, BadPlansAreRejectedByTheController) {
 }
 
 }  // namespace
-}  // namespace grip::rt::dds
+}  // namespace grip::link

@@ -15,11 +15,11 @@
 #include <vector>
 
 #include "grip/common/function_ref.hpp"
-#include "grip/rt/dds/messages.hpp"
+#include "grip/link/messages.hpp"
 #include "grip/world/occupancy_grid.hpp"
 #include "map_update.h"
 
-namespace grip::rt::dds {
+namespace grip::link {
 
 // FNV-1a (64 bit) over the geometry and the cells: equal maps have equal checksums; the planner
 // reports its map's in the status so that anyone can compare it with the mapper's.
@@ -100,4 +100,4 @@ class MapReceiver {
   std::uint64_t heals_ = 0;
 };
 
-}  // namespace grip::rt::dds
+}  // namespace grip::link

@@ -14,7 +14,7 @@
 #include "plan.h"
 #include "vehicle_state.h"
 
-namespace grip::rt::dds {
+namespace grip::link {
 
 enum class Rejection : std::uint8_t {
   kNone,
@@ -97,4 +97,4 @@ Verdict check_plan(const grip_msg_Plan& msg, VehicleKind kind) noexcept;
 // The braking maneuver each vehicle's plans end in (its contingency, GRIP.md section 2.3).
 grip_msg_ContingencyKind contingency_of(VehicleKind kind) noexcept;
 
-}  // namespace grip::rt::dds
+}  // namespace grip::link

@@ -1,0 +1,243 @@
+#include "receive_side.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iterator>
+
+#include "grip/platform/clock.hpp"
+
+namespace grip::rt::dds {
+
+namespace {
+
+namespace pdds = platform::dds;
+
+// The DDS time of a sample's source timestamp against now, for freshness checks.
+link::Verdict check_sample_freshness(const dds_sample_info_t& info) {
+  return link::check_freshness(info.source_timestamp, dds_time(), link::FreshnessLimits{});
+}
+
+}  // namespace
+
+template <VehicleModel V>
+ReceiveSide<V>::ReceiveSide(const V& vehicle, ReceiveEntities entities, Handoffs& handoffs,
+                            platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells)
+    : vehicle_(vehicle),
+      dds_(entities),
+      handoffs_(handoffs),
+      lockstep_inputs_(lockstep_inputs),
+      receiver_(max_map_cells) {}
+
+template <VehicleModel V>
+void ReceiveSide<V>::run(const std::atomic<bool>& stop_threads, const std::atomic<bool>& stopping) {
+  // Sample storage reused for every take: after the first few, takes no longer allocate.
+  auto state_buffer =
+      std::make_unique<pdds::SampleBuffer<grip_msg_VehicleState, 8>>(&grip_msg_VehicleState_desc);
+  auto map_buffer =
+      std::make_unique<pdds::SampleBuffer<grip_msg_MapUpdate, 8>>(&grip_msg_MapUpdate_desc);
+  auto goal_buffer = std::make_unique<pdds::SampleBuffer<grip_msg_Goal, 4>>(&grip_msg_Goal_desc);
+  while (!stop_threads.load(std::memory_order_acquire)) {
+    // The timeout paces the periodic work: snapshot requests, tiles the ring had no room for,
+    // liveliness.
+    static_cast<void>(dds_.waitset.wait(std::chrono::milliseconds(20)));
+    take_states(*state_buffer);
+    take_maps(*map_buffer);
+    take_goals(*goal_buffer);
+    const std::int64_t now = platform::now_ns();
+    if (receiver_.should_request(now, 500'000'000)) {
+      grip_msg_MapRequest request{};
+      request.from_sequence = receiver_.next_expected();
+      request.stamp_ns = static_cast<std::uint64_t>(clock_.vehicle_ns(now, 1.0));
+      if (dds_.requests.write(request).ok()) receiver_.note_requested(now);
+    }
+    hand_over_tiles();
+    check_liveliness(stopping.load(std::memory_order_acquire));
+    if (lockstep_seen_) lockstep_inputs_.signal();
+  }
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& buffer) {
+  for (;;) {
+    const Result<std::size_t> taken = dds_.states.take(buffer);
+    if (!taken.ok() || *taken == 0) return;
+    for (std::size_t i = 0; i < *taken; ++i) {
+      const grip_msg_VehicleState& msg = buffer[i];
+      // A lockstep simulator repeats the state it waits on (for a planner that joins late):
+      // a repeat is neither new nor an error.
+      if (msg.stamp_ns == last_state_stamp_ && msg.sequence_number == last_state_sequence_) {
+        continue;
+      }
+      link::Verdict verdict = check_sample_freshness(buffer.info(i));
+      if (verdict.ok()) verdict = link::check_vehicle_state(msg, vehicle_, last_state_stamp_);
+      const std::int64_t now = platform::now_ns();
+      if (!verdict.ok()) {
+        counters_.rejected_vehicle_state.fetch_add(1, std::memory_order_relaxed);
+        rejected("vehicle state", verdict, now);
+        continue;
+      }
+      last_state_stamp_ = msg.stamp_ns;
+      last_state_sequence_ = msg.sequence_number;
+      lockstep_seen_ = msg.lockstep;
+      clock_.observe(msg.stamp_ns, now, msg.time_scale);
+      VehicleSample& sample = handoffs_.states->write_buffer();
+      std::copy(std::begin(msg.state), std::end(msg.state), sample.state.begin());
+      sample.stamp_ns = msg.stamp_ns;
+      sample.sequence_number = msg.sequence_number;
+      sample.plan_cycle = msg.plan_cycle;
+      sample.map_sequence = msg.map_sequence;
+      sample.time_scale = msg.time_scale;
+      sample.lockstep = msg.lockstep;
+      handoffs_.states->publish();
+    }
+  }
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::take_maps(pdds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer) {
+  for (;;) {
+    const Result<std::size_t> taken = dds_.maps.take(buffer);
+    if (!taken.ok() || *taken == 0) return;
+    for (std::size_t i = 0; i < *taken; ++i) {
+      const std::int64_t now = platform::now_ns();
+      const link::Verdict fresh = check_sample_freshness(buffer.info(i));
+      const bool had_map = receiver_.has_map();
+      const link::MapApplied applied = fresh.ok()
+                                           ? receiver_.apply(buffer[i])
+                                           : link::MapApplied{fresh, false, false, false, {}};
+      if (!applied.verdict.ok()) {
+        counters_.rejected_map_update.fetch_add(1, std::memory_order_relaxed);
+        rejected("map update", applied.verdict, now);
+        continue;
+      }
+      if (!had_map) {
+        geometry_ = link::geometry_of(receiver_.map());
+        tiles_x_ = (receiver_.map().width() + kTileSide - 1) / kTileSide;
+        tiles_y_ = (receiver_.map().height() + kTileSide - 1) / kTileSide;
+        dirty_.assign(static_cast<std::size_t>(tiles_x_ * tiles_y_), CellBox{});
+        geometry_ready_.store(true, std::memory_order_release);
+        if (pending_goal_) accept_goal(*pending_goal_);
+        pending_goal_.reset();
+      }
+      if (applied.gap) {
+        counters_.map_gaps.fetch_add(1, std::memory_order_relaxed);
+        std::fprintf(stderr,
+                     "grip planner: map update gap before sequence %llu; requesting a snapshot\n",
+                     static_cast<unsigned long long>(buffer[i].sequence_number));
+      }
+      if (applied.healed) counters_.map_heals.fetch_add(1, std::memory_order_relaxed);
+      mark_dirty(applied.changed);
+    }
+  }
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::take_goals(pdds::SampleBuffer<grip_msg_Goal, 4>& buffer) {
+  for (;;) {
+    const Result<std::size_t> taken = dds_.goals.take(buffer);
+    if (!taken.ok() || *taken == 0) return;
+    for (std::size_t i = 0; i < *taken; ++i) {
+      const link::Verdict fresh = check_sample_freshness(buffer.info(i));
+      if (!fresh.ok()) {
+        counters_.rejected_goal.fetch_add(1, std::memory_order_relaxed);
+        rejected("goal", fresh, platform::now_ns());
+      } else if (!receiver_.has_map()) {
+        pending_goal_ = buffer[i];
+      } else {
+        accept_goal(buffer[i]);
+      }
+    }
+  }
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::accept_goal(const grip_msg_Goal& goal) {
+  const link::Verdict verdict = link::check_goal(goal, receiver_.map());
+  if (!verdict.ok()) {
+    counters_.rejected_goal.fetch_add(1, std::memory_order_relaxed);
+    rejected("goal", verdict, platform::now_ns());
+    return;
+  }
+  handoffs_.goals->write(link::goal_from_wire(goal));
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::mark_dirty(const CellBox& box) {
+  for (int ty = box.y0 / kTileSide; ty <= box.y1 / kTileSide; ++ty) {
+    for (int tx = box.x0 / kTileSide; tx <= box.x1 / kTileSide; ++tx) {
+      const CellBox tile{tx * kTileSide, ty * kTileSide, tx * kTileSide + kTileSide - 1,
+                         ty * kTileSide + kTileSide - 1};
+      const CellBox part{std::max(box.x0, tile.x0), std::max(box.y0, tile.y0),
+                         std::min(box.x1, tile.x1), std::min(box.y1, tile.y1)};
+      dirty_[static_cast<std::size_t>(ty * tiles_x_ + tx)].add(part);
+    }
+  }
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::hand_over_tiles() {
+  // Tiles carry the receiver's map as it is now, so a tile cut later is never older; a tile
+  // the ring has no room for stays dirty and goes next time.
+  if (!receiver_.has_map()) return;
+  const OccupancyGrid& map = receiver_.map();
+  std::size_t pending = 0;
+  for (const CellBox& box : dirty_) pending += box.empty() ? 0U : 1U;
+  MapTile* tile = handover_tile_.get();
+  for (CellBox& box : dirty_) {
+    if (box.empty()) continue;
+    tile->box = box;
+    tile->map_sequence = receiver_.last_sequence();
+    tile->in_sync = receiver_.in_sync();
+    tile->last_of_batch = --pending == 0;
+    const int w = box.x1 - box.x0 + 1;
+    for (int y = box.y0; y <= box.y1; ++y) {
+      for (int x = box.x0; x <= box.x1; ++x) {
+        tile->cells[static_cast<std::size_t>((y - box.y0) * w + (x - box.x0))] = map.at(x, y);
+      }
+    }
+    if (!handoffs_.tiles->try_push(*tile)) return;
+    box = CellBox{};
+  }
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::check_liveliness(bool stopping) {
+  const auto live = dds_.states.liveliness_changed();
+  if (!live.ok()) return;
+  const bool alive = live->alive_count > 0;
+  // Once planning has been told to stop, the vehicle leaving is the end of the run, not a loss.
+  if (was_alive_ && !alive && !stopping) {
+    counters_.vehicle_losses.fetch_add(1, std::memory_order_relaxed);
+    std::fprintf(stderr,
+                 "grip planner: vehicle controller lost (liveliness); planning goes on with the "
+                 "last map and state\n");
+  }
+  was_alive_ = alive;
+  counters_.vehicle_alive.store(alive, std::memory_order_relaxed);
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::rejected(const char* topic, const link::Verdict& verdict,
+                              std::int64_t now_ns) {
+  if (now_ns - last_log_ns_ < 1'000'000'000 && last_log_ns_ != 0) {
+    ++log_suppressed_;
+    return;
+  }
+  const std::string_view reason = link::rejection_name(verdict.reason);
+  std::fprintf(stderr, "grip planner: rejected %s: %.*s (%s)", topic,
+               static_cast<int>(reason.size()), reason.data(), verdict.field);
+  if (log_suppressed_ > 0) {
+    std::fprintf(stderr, "; %llu more rejected in the last second",
+                 static_cast<unsigned long long>(log_suppressed_));
+  }
+  std::fprintf(stderr, "\n");
+  log_suppressed_ = 0;
+  last_log_ns_ = now_ns;
+}
+
+template class ReceiveSide<DdVelocity>;
+template class ReceiveSide<DdAcceleration>;
+template class ReceiveSide<Car>;
+
+}  // namespace grip::rt::dds

@@ -1,0 +1,103 @@
+#pragma once
+// Exploration (Bekris & Kavraki 2007, Sec. IV) as a replanning run drives it: the frontier
+// target is chosen again every refresh_cycles cycles from where the next plan starts (the robot
+// moves even when the map does not change), and the plan leads to the tree state of least
+// visibility/length weight toward it (PathSelector).
+//
+// In real time the choice (ExplorationTarget: whole-map passes of milliseconds) runs on another
+// thread while the planning thread goes on growing toward the previous target; the first cycle
+// after the choice takes it over. The hand-over is one atomic stage: kIdle (the planning thread
+// owns the target: it copies its map in and notes where the robot will be), kRequested (the
+// target thread chooses), kChosen (the planning thread takes the choice over, then kIdle). In
+// lockstep the choice is made at once, in the cycle, so that a seed reproduces a run.
+//
+// create() allocates; everything else never allocates and never throws.
+
+#include <atomic>
+#include <cstdint>
+
+#include "grip/common/result.hpp"
+#include "grip/exploration/exploration_target.hpp"
+#include "grip/exploration/path_selector.hpp"
+#include "grip/rt/replanning_cycle.hpp"
+
+namespace grip::rt {
+
+struct ExplorationDriverConfig {
+  ExplorationTargetConfig target;
+  // The target is chosen again every this many cycles (1: every cycle). Taking a new one over
+  // costs the planning thread rho toward it and the path selector's rays, and the tree, which
+  // needs that time to grow, is carried over in between.
+  std::uint32_t refresh_cycles = 5;
+  double sensing_radius_m = 0.0;  // d_max of the path weight; 0: a tenth of the map's width
+};
+
+template <VehicleModel V>
+class ExplorationDriver {
+ public:
+  // For the planner's grid (its geometry) and pools (max_edges); rho's inflation is the
+  // planner's (PlannerConfig::rho_clearance_m).
+  static Result<ExplorationDriver> create(const OccupancyGrid& grid,
+                                          const ExplorationDriverConfig& config,
+                                          const PlannerConfig& planner);
+
+  // Planning thread, before every cycle while exploring. Real time: takes over a chosen target,
+  // or requests a new one when it is due and returns true (wake the target thread). Lockstep:
+  // chooses a due target at once.
+  bool update(ReplanningCycle<V>& cycle, const OccupancyGrid& grid, std::uint64_t plan_start_ns,
+              bool map_changed, bool lockstep) noexcept;
+  // Planning thread: chooses a target now and heads the cycle for it (the first target).
+  void choose_now(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
+                  std::uint64_t plan_start_ns) noexcept;
+  // Target thread: chooses the requested target; false when none was requested.
+  bool serve_request() noexcept;
+
+  // The state the plan leads to: the path selector's choice, or the root once explored.
+  TreeState choose_plan_end(const Planner<V>& planner, std::uint32_t cycle_steps) noexcept;
+
+  ExplorationDriver(ExplorationDriver&& other) noexcept;  // start-up only: not while in use
+  ExplorationDriver& operator=(ExplorationDriver&&) = delete;
+
+  // Exploration ended: no reachable frontier remained.
+  bool explored() const noexcept { return explored_; }
+  std::uint32_t groups() const noexcept { return groups_; }
+  std::uint32_t groups_given_up() const noexcept { return groups_given_up_; }
+  // The last target taken over, if any: its centre (the group's cell nearest the robot).
+  bool has_target() const noexcept { return has_target_; }
+  double target_x_m() const noexcept { return target_x_m_; }
+  double target_y_m() const noexcept { return target_y_m_; }
+
+ private:
+  enum Stage : std::uint8_t { kIdle, kRequested, kChosen };
+
+  ExplorationDriver(const ExplorationDriverConfig& config, ExplorationTarget target,
+                    PathSelector selector)
+      : config_(config), target_(std::move(target)), selector_(std::move(selector)) {}
+  void request(const ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
+               std::uint64_t plan_start_ns) noexcept;
+  void take_over(ReplanningCycle<V>& cycle, const OccupancyGrid& grid) noexcept;
+
+  ExplorationDriverConfig config_;
+  std::atomic<std::uint8_t> stage_{kIdle};
+  ExplorationTarget target_;
+  double robot_x_m_ = 0.0;  // the request: where the robot will be, and when
+  double robot_y_m_ = 0.0;
+  std::int64_t robot_ns_ = 0;
+  // Planning thread only.
+  PathSelector selector_;
+  bool requested_ = false;  // a target has been requested at least once
+  std::uint32_t cycles_since_request_ = 0;
+  bool map_changed_since_request_ = true;  // target_ holds the map of its creation
+  bool explored_ = false;
+  std::uint32_t groups_ = 0;
+  std::uint32_t groups_given_up_ = 0;
+  bool has_target_ = false;
+  double target_x_m_ = 0.0;
+  double target_y_m_ = 0.0;
+};
+
+extern template class ExplorationDriver<DdVelocity>;
+extern template class ExplorationDriver<DdAcceleration>;
+extern template class ExplorationDriver<Car>;
+
+}  // namespace grip::rt

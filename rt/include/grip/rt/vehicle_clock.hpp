@@ -1,0 +1,40 @@
+#pragma once
+// The vehicle's clock as seen from the planner's computer: vehicle_ns = scale * local_ns + offset,
+// with scale the simulation's time scale (1 on a real vehicle). A state stamped S and received
+// at local time L gives S - scale * L, below the true offset by the delivery latency, so the
+// largest of recent values is the best estimate. One thread observes, any thread reads.
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+
+namespace grip::rt {
+
+class VehicleClock {
+ public:
+  // A state stamped stamp_ns (vehicle time) received at local_ns (CLOCK_MONOTONIC).
+  void observe(std::uint64_t stamp_ns, std::int64_t local_ns, double scale) noexcept {
+    const auto candidate = static_cast<std::int64_t>(static_cast<double>(stamp_ns) -
+                                                     scale * static_cast<double>(local_ns));
+    window_[next_++ % window_.size()] = candidate;
+    filled_ = std::min<std::size_t>(filled_ + 1, window_.size());
+    std::int64_t best = window_[0];
+    for (std::size_t i = 1; i < filled_; ++i) best = std::max(best, window_[i]);
+    offset_ns_.store(best, std::memory_order_relaxed);
+  }
+  // The vehicle's time at local_ns; the offset is 0 until the first observe().
+  std::int64_t vehicle_ns(std::int64_t local_ns, double scale) const noexcept {
+    return static_cast<std::int64_t>(scale * static_cast<double>(local_ns)) +
+           offset_ns_.load(std::memory_order_relaxed);
+  }
+
+ private:
+  std::array<std::int64_t, 64> window_{};  // the observing thread's
+  std::size_t next_ = 0;
+  std::size_t filled_ = 0;
+  std::atomic<std::int64_t> offset_ns_{0};
+};
+
+}  // namespace grip::rt

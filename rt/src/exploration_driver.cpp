@@ -1,0 +1,126 @@
+#include "grip/rt/exploration_driver.hpp"
+
+#include <utility>
+
+namespace grip::rt {
+
+template <VehicleModel V>
+Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const OccupancyGrid& grid,
+                                                          const ExplorationDriverConfig& config,
+                                                          const PlannerConfig& planner) {
+  ExplorationTargetConfig target_config = config.target;
+  target_config.frontier.clearance_m = planner.rho_clearance_m;
+  auto target = ExplorationTarget::create(grid, target_config);
+  if (!target) return target.error();
+  PathSelectionConfig selection;
+  selection.sensing_radius_m =
+      config.sensing_radius_m > 0.0 ? config.sensing_radius_m : grid.width_m() / 10.0;
+  auto selector = PathSelector::create(grid.width(), grid.height(), grid.resolution(),
+                                       planner.max_edges, selection);
+  if (!selector) return selector.error();
+  return ExplorationDriver(config, std::move(target).value(), std::move(selector).value());
+}
+
+template <VehicleModel V>
+ExplorationDriver<V>::ExplorationDriver(ExplorationDriver&& other) noexcept
+    : config_(other.config_),
+      stage_(other.stage_.load(std::memory_order_acquire)),
+      target_(std::move(other.target_)),
+      robot_x_m_(other.robot_x_m_),
+      robot_y_m_(other.robot_y_m_),
+      robot_ns_(other.robot_ns_),
+      selector_(std::move(other.selector_)),
+      requested_(other.requested_),
+      cycles_since_request_(other.cycles_since_request_),
+      map_changed_since_request_(other.map_changed_since_request_),
+      explored_(other.explored_),
+      groups_(other.groups_),
+      groups_given_up_(other.groups_given_up_),
+      has_target_(other.has_target_),
+      target_x_m_(other.target_x_m_),
+      target_y_m_(other.target_y_m_) {}
+
+template <VehicleModel V>
+bool ExplorationDriver<V>::update(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
+                                  std::uint64_t plan_start_ns, bool map_changed,
+                                  bool lockstep) noexcept {
+  map_changed_since_request_ = map_changed_since_request_ || map_changed;
+  if (lockstep) {
+    if (requested_ && ++cycles_since_request_ < config_.refresh_cycles) return false;
+    choose_now(cycle, grid, plan_start_ns);
+    return false;
+  }
+  const std::uint8_t stage = stage_.load(std::memory_order_acquire);
+  if (stage == kChosen) {
+    take_over(cycle, grid);
+    stage_.store(kIdle, std::memory_order_release);
+  } else if (stage == kIdle && (!requested_ || ++cycles_since_request_ >= config_.refresh_cycles)) {
+    request(cycle, grid, plan_start_ns);
+    stage_.store(kRequested, std::memory_order_release);
+    return true;
+  }
+  return false;
+}
+
+template <VehicleModel V>
+void ExplorationDriver<V>::choose_now(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
+                                      std::uint64_t plan_start_ns) noexcept {
+  request(cycle, grid, plan_start_ns);
+  target_.choose(robot_x_m_, robot_y_m_, robot_ns_);
+  take_over(cycle, grid);
+}
+
+template <VehicleModel V>
+bool ExplorationDriver<V>::serve_request() noexcept {
+  if (stage_.load(std::memory_order_acquire) != kRequested) return false;
+  target_.choose(robot_x_m_, robot_y_m_, robot_ns_);
+  stage_.store(kChosen, std::memory_order_release);
+  return true;
+}
+
+template <VehicleModel V>
+TreeState ExplorationDriver<V>::choose_plan_end(const Planner<V>& planner,
+                                                std::uint32_t cycle_steps) noexcept {
+  return explored_ ? planner.root_state() : selector_.select(planner, cycle_steps).state;
+}
+
+// The planning thread, with target_ its own (kIdle, or lockstep).
+template <VehicleModel V>
+void ExplorationDriver<V>::request(const ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
+                                   std::uint64_t plan_start_ns) noexcept {
+  requested_ = true;
+  cycles_since_request_ = 0;
+  if (std::exchange(map_changed_since_request_, false)) target_.copy_map(grid);
+  const typename V::State& here = cycle.plan_start();
+  robot_x_m_ = state_x(here);
+  robot_y_m_ = state_y(here);
+  robot_ns_ = static_cast<std::int64_t>(plan_start_ns);
+}
+
+// The planning thread, with target_ its own (kChosen, or lockstep).
+template <VehicleModel V>
+void ExplorationDriver<V>::take_over(ReplanningCycle<V>& cycle,
+                                     const OccupancyGrid& grid) noexcept {
+  groups_ = target_.groups();
+  groups_given_up_ = target_.given_up_groups();
+  const ExplorationStatus status = target_.status();
+  if (status != ExplorationStatus::kTarget) {
+    // No reachable frontier is left (or the robot is off the map): stop where it stands.
+    explored_ = status == ExplorationStatus::kComplete;
+    const typename V::State& here = cycle.plan_start();
+    cycle.set_goal(GoalRegion{state_x(here), state_y(here), 0.5});
+    return;
+  }
+  explored_ = false;
+  has_target_ = true;
+  target_x_m_ = target_.target_x_m();
+  target_y_m_ = target_.target_y_m();
+  cycle.set_goal(GoalCells{target_.approach_cells()}, target_.rho());
+  selector_.set_target(grid, target_.target_cells());
+}
+
+template class ExplorationDriver<DdVelocity>;
+template class ExplorationDriver<DdAcceleration>;
+template class ExplorationDriver<Car>;
+
+}  // namespace grip::rt
