@@ -12,11 +12,11 @@
 // like ours.
 // The two alternate in rounds (ours, then ddsperf, --rounds times), each side measured for a
 // share of --duration per round, so that both meet the same states of a shared machine: a
-// VM stall of a few seconds lands on one side of one round, not on one side of the whole run.
-// Percentiles are compared pooled over all rounds. ddsperf prints only per-second summaries;
-// the k-th largest of its per-second maxima (k = 1% of its round trips) is a lower bound of its
-// pooled p99, since those maxima are k of its samples. Medians of per-second p99s would hide
-// the VM's occasional stalls on ddsperf's side only, while ours are pooled.
+// stall of the machine for a few seconds lands on one side of one round, not on one side of the
+// whole run. Percentiles are compared pooled over all rounds. ddsperf prints only per-second
+// summaries; the k-th largest of its per-second maxima (k = 1% of its round trips) is a lower bound
+// of its pooled p99, since those maxima are k of its samples. Medians of per-second p99s would hide
+// the machine's occasional stalls on ddsperf's side only, while ours are pooled.
 // A benchmark: it measures and prints, it asserts nothing.
 
 #include <algorithm>
@@ -44,6 +44,7 @@
 #include "grip/scenes/scenes.hpp"
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/sim_participant.hpp"
+#include "stats.hpp"
 
 namespace grip::tools {
 
@@ -263,11 +264,8 @@ struct DdsperfSide {
   }
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+// Tables show 0 for no samples.
+double median(const std::vector<double>& v) { return tools::median(v, 0.0); }
 
 // One round of ddsperf, `seconds` long.
 Result<DdsperfSide> measure_ddsperf(const BenchDdsOptions& o, int seconds,

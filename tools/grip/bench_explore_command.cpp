@@ -22,6 +22,7 @@
 
 #include "child.hpp"
 #include "commands.hpp"
+#include "stats.hpp"
 
 namespace grip::tools {
 
@@ -104,12 +105,8 @@ std::string run_line(const Run& r) {
   return line.str();
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+// Tables show 0 for no samples.
+double median(const std::vector<double>& v) { return tools::median(v, 0.0); }
 
 // One row of the table: the runs of one world and robot.
 struct Row {

@@ -1,4 +1,4 @@
-// `grip explore` and `grip sim`: exploration of an unknown workspace (GRIP.md section 3) with the
+// `grip explore` and `grip sim`: exploration of an unknown workspace (the paper's Sec. IV) with the
 // simulator standing in for the vehicle.
 //   grip explore  the simulator and the planner as two DDS participants in one process;
 //   grip sim      the simulator alone, for a `grip planner` started elsewhere (host-in-the-loop).

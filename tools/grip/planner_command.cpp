@@ -13,9 +13,11 @@
 #include <string>
 
 #include "commands.hpp"
+#include "cycle_options.hpp"
 #include "cycle_trace.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
+#include "latency_json.hpp"
 
 namespace grip::tools {
 
@@ -64,15 +66,9 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o) {
     }
     config.dds_config = "file://" + o.dds_config;
   }
-  if (!(o.period_ms >= 1.0 && o.period_ms <= 4000.0)) {
-    return invalid_argument("--period-ms must be in [1, 4000] (got " + std::to_string(o.period_ms) +
-                            ")");
+  if (Status s = validate_cycle_options(o.period_ms, o.budget_ms, o.margin_ms, o.max_edges); !s) {
+    return s.error();
   }
-  if (!(o.budget_ms > 0.0 && o.budget_ms < o.period_ms)) {
-    return invalid_argument("--budget-ms must be > 0 and below the period (got " +
-                            std::to_string(o.budget_ms) + ")");
-  }
-  if (o.margin_ms >= o.budget_ms) return invalid_argument("--margin-ms must be below the budget");
   if (!(o.lease_ms >= 10.0)) return invalid_argument("--lease-ms must be at least 10");
   if (!(o.duration_s >= 0.0) || !(o.startup_timeout_s >= 0.0)) {
     return invalid_argument("--duration and --startup-timeout must be >= 0");
@@ -88,12 +84,6 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o) {
   config.startup_timeout =
       std::chrono::nanoseconds(static_cast<std::int64_t>(o.startup_timeout_s * 1e9));
   return config;
-}
-
-nlohmann::json percentiles_us(const rt::LatencyHistogram& h) {
-  if (h.count() == 0) return nullptr;
-  const auto us = [](std::int64_t ns) { return static_cast<double>(ns) / 1e3; };
-  return {{"p50", us(h.percentile(0.5))}, {"p99", us(h.percentile(0.99))}, {"max", us(h.max())}};
 }
 
 int run_planner(const PlannerOptions& o) {
@@ -187,10 +177,10 @@ int run_planner(const PlannerOptions& o) {
     j["heap_allocations_in_loop"] =
         r.allocations_counted ? nlohmann::json(r.heap_allocations_in_loop) : nullptr;
     j["page_faults_in_loop"] = r.usage_in_loop.minor_faults + r.usage_in_loop.major_faults;
-    j["wake_latency_us"] = percentiles_us(r.wake_latency);
-    j["compute_us"] = percentiles_us(r.compute);
-    j["plan_handoff_us"] = percentiles_us(r.plan_handoff);
-    j["plan_write_us"] = percentiles_us(r.plan_write);
+    j["wake_latency_us"] = latency_json_us(r.wake_latency);
+    j["compute_us"] = latency_json_us(r.compute);
+    j["plan_handoff_us"] = latency_json_us(r.plan_handoff);
+    j["plan_write_us"] = latency_json_us(r.plan_write);
     std::ofstream out(o.report);
     out << j.dump(2) << "\n";
     if (!out) {

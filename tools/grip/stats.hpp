@@ -25,11 +25,16 @@ inline double percentile(std::vector<double> v, double q) {
   return v[lo] + (v[hi] - v[lo]) * (pos - static_cast<double>(lo));
 }
 
+// The median, or `if_empty` for no samples.
+inline double median(const std::vector<double>& v, double if_empty = NAN) {
+  return v.empty() ? if_empty : percentile(v, 0.5);
+}
+
 inline Summary summarize(const std::vector<double>& v) {
   Summary s;
   s.count = v.size();
   if (v.empty()) return s;
-  s.median = percentile(v, 0.5);
+  s.median = median(v);
   s.mean = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
   s.max = *std::max_element(v.begin(), v.end());
   s.min = *std::min_element(v.begin(), v.end());

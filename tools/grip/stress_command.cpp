@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "cycle_options.hpp"
 #include "grip/common/random.hpp"
 #include "grip/platform/alloc_counter.hpp"
 #include "grip/platform/clock.hpp"
@@ -32,6 +33,7 @@
 #include "grip/rt/periodic_loop.hpp"
 #include "grip/rt/replanning_cycle.hpp"
 #include "grip/rt/triple_buffer.hpp"
+#include "latency_json.hpp"
 #include "standalone.hpp"
 
 namespace grip::tools {
@@ -70,18 +72,8 @@ Status validate(const StressOptions& o) {
   if (!std::isfinite(o.duration_s) || o.duration_s <= 0.0 || o.duration_s > 7 * 24 * 3600.0) {
     return bad("--duration must be in (0, 604800] s (got " + std::to_string(o.duration_s) + ")");
   }
-  if (!std::isfinite(o.period_ms) || o.period_ms < 1.0 || o.period_ms > 4000.0) {
-    return bad("--period-ms must be in [1, 4000] ms (got " + std::to_string(o.period_ms) + ")");
-  }
-  if (!std::isfinite(o.budget_ms) || o.budget_ms <= 0.0 || o.budget_ms >= o.period_ms) {
-    return bad("--budget-ms must be > 0 and below the period " + std::to_string(o.period_ms) +
-               " ms (got " + std::to_string(o.budget_ms) + ")");
-  }
-  if (o.margin_ms >= 0.0 && o.margin_ms >= o.budget_ms) {
-    return bad("--margin-ms must be below the budget (got " + std::to_string(o.margin_ms) + ")");
-  }
-  if (o.max_edges != 0 && o.max_edges < 100) {
-    return bad("--max-edges must be at least 100 (got " + std::to_string(o.max_edges) + ")");
+  if (Status s = validate_cycle_options(o.period_ms, o.budget_ms, o.margin_ms, o.max_edges); !s) {
+    return s;
   }
   if (o.max_miss_rate != -1.0 && (!(o.max_miss_rate >= 0.0) || o.max_miss_rate > 1.0)) {
     return bad("--max-miss-rate must be in [0, 1] (got " + std::to_string(o.max_miss_rate) + ")");
@@ -89,19 +81,8 @@ Status validate(const StressOptions& o) {
   return Ok{};
 }
 
-double us(std::int64_t ns) { return static_cast<double>(ns) / 1e3; }
 double per(std::uint64_t total, std::uint64_t count) {
   return count > 0 ? static_cast<double>(total) / static_cast<double>(count) : 0.0;
-}
-
-nlohmann::json percentiles_us(const rt::LatencyHistogram& h) {
-  if (h.count() == 0) return nullptr;
-  return {{"p50", us(h.percentile(0.5))},
-          {"p99", us(h.percentile(0.99))},
-          {"p999", us(h.percentile(0.999))},
-          {"max", us(h.max())},
-          {"min", us(h.min())},
-          {"count", h.count()}};
 }
 
 std::string kernel_release() {
@@ -352,19 +333,19 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   report["misses"] = result.misses;
   report["skipped"] = skipped;  // releases woken after the next was due (among the misses)
   report["miss_rate"] = miss_rate;
-  report["wake_latency_us"] = percentiles_us(wake);
-  report["reference_wake_latency_us"] = percentiles_us(result.reference_wake_latency);
+  report["wake_latency_us"] = latency_json_us(wake);
+  report["reference_wake_latency_us"] = latency_json_us(result.reference_wake_latency);
   report["reference_policy"] =
       result.reference_thread
           ? nlohmann::json(platform::policy_name(result.reference_thread->scheduling.policy))
           : nlohmann::json(nullptr);
   report["wake_latency_p99_over_reference"] =
       reference_p99_us > 0.0 ? nlohmann::json(wake_p99_us / reference_p99_us) : nullptr;
-  report["lateness_us"] = percentiles_us(lateness);  // end - deadline, clamped at 0
-  report["slack_us"] = percentiles_us(slack);        // deadline - end, clamped at 0
-  report["compute_us"] = percentiles_us(compute);
-  report["retain_us"] = percentiles_us(retain);
-  report["commit_us"] = percentiles_us(commit);
+  report["lateness_us"] = latency_json_us(lateness);  // end - deadline, clamped at 0
+  report["slack_us"] = latency_json_us(slack);        // deadline - end, clamped at 0
+  report["compute_us"] = latency_json_us(compute);
+  report["retain_us"] = latency_json_us(retain);
+  report["commit_us"] = latency_json_us(commit);
   report["overruns"] = overruns.overruns();
   report["page_faults_in_loop"] =
       result.usage_in_loop.minor_faults + result.usage_in_loop.major_faults;

@@ -67,9 +67,7 @@ std::vector<std::pair<std::string, std::string>> experiments_of(
   return out;
 }
 
-double median_or_nan(const std::vector<double>& v) {
-  return v.empty() ? std::numeric_limits<double>::quiet_NaN() : tools::percentile(v, 0.5);
-}
+double median_or_nan(const std::vector<double>& v) { return tools::median(v); }
 
 }  // namespace
 

@@ -1,4 +1,4 @@
-// Safety at low cost (GRIP.md section 2.3): contingency maneuvers, the check at time T only,
+// Safety at low cost (the paper's Sec. III-C): contingency maneuvers, the check at time T only,
 // and the all-leaves-safe variant.
 
 #include <gtest/gtest.h>

@@ -91,10 +91,10 @@ inline GoalRegion goal_from_wire(const grip_msg_Goal& msg) noexcept {
 
 // A plan, for the vehicle controller: the kind it drives, finite controls, durations > 0 and
 // finite, a start state of the right dimension and finite. A plan without steps is valid: it
-// says "brake from the start time" (the planner has nothing safe to add).
+// says "nothing new from the start time" (idl/plan.idl).
 Verdict check_plan(const grip_msg_Plan& msg, VehicleKind kind) noexcept;
 
-// The braking maneuver each vehicle's plans end in (its contingency, GRIP.md section 2.3).
+// The braking maneuver each vehicle's plans end in (its contingency, the paper's Sec. III-C).
 grip_msg_ContingencyKind contingency_of(VehicleKind kind) noexcept;
 
 }  // namespace grip::link

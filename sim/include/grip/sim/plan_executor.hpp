@@ -1,6 +1,6 @@
 #pragma once
 // Executes the planner's plans with the vehicle model against simulated time, as the vehicle's
-// controller would (GRIP.md sections 1 and 2.3), and watches the chassis against the ground
+// controller would (the paper's Sec. II and III-C), and watches the chassis against the ground
 // truth.
 //
 // Time: nanoseconds, integer, so that plan switches happen exactly when they should. The
@@ -16,7 +16,7 @@
 // plan starting at or after it, and at its start time it replaces the plan being executed
 // (unless it is refused there: ExecutorConfig::refuse_start_mismatch). An empty plan replaces
 // queued plans the same way but never the executed one: the vehicle drives that to its end,
-// where the planner checked its braking (GRIP.md section 2.3); braking anywhere else was never
+// where the planner checked its braking (the paper's Sec. III-C); braking anywhere else was never
 // checked (cutting plans short, a car braked into a door frame).
 // When the executed plan runs out with nothing queued, or abandon_plans() is called (the
 // planner fell silent past its lease), the vehicle performs the model's braking contingency

@@ -1,5 +1,5 @@
 #pragma once
-// The simulated range sensor (GRIP.md section 3): from the vehicle's reference point it casts
+// The simulated range sensor (the paper's Sec. IV): from the vehicle's reference point it casts
 // rays against the ground truth and writes what they see into the planner-visible three-valued
 // map, which starts all kUnknown.
 //
@@ -37,7 +37,7 @@ struct SenseResult {
 
 class RangeSensor {
  public:
-  // One tenth of the scene width (GRIP.md section 3); the scene width is taken as the larger
+  // One tenth of the scene width (the paper's Sec. IV); the scene width is taken as the larger
   // side of the grid, so a long narrow map still gets a useful radius.
   static double default_radius_m(const OccupancyGrid& truth) noexcept;
 

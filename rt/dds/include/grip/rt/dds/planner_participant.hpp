@@ -2,23 +2,13 @@
 // The replanning runtime as a DDS participant (`grip planner`): it subscribes to vehicle state,
 // map updates and goals, and publishes plans and its status.
 //
-// Threads, and what crosses between them (all hand-offs bounded and lock-free):
-//   receive thread (ordinary): waits on the readers, validates every sample, keeps the map in
-//     sync (MapReceiver, asking for snapshots after gaps) and hands over
-//       map tiles  -> SpscRing (planning thread applies them before its next cycle)
-//       states, goals -> TripleBuffer (latest wins)
-//   planning thread (SCHED_DEADLINE, rt::PeriodicLoop): one replanning cycle per period; it never
-//     calls into DDS. Its plan and status go out through TripleBuffers and a Wakeup signal.
-//   publish thread (ordinary): writes plans and status. A reliable writer that blocks in
-//     dds_write (up to max_blocking_time) delays only this thread; the planning thread meanwhile
-//     replaces the pending plan by a newer one, and the replaced one is counted as superseded.
-//     Woken when the plan's end is chosen, it is running by the time the plan is handed over,
-//     so that a plan's write does not wait for a thread's wake-up.
-//   target thread (ordinary; exploring in real time): chooses the frontier target
-//     (ExplorationTarget: clearance, the frontier wavefront, grouping), whole-map passes of
-//     milliseconds, on a copy of the map the planning thread hands over with the robot's
-//     position; one request at a time, through an atomic stage (idle, requested, chosen). The
-//     planning thread grows toward the previous target meanwhile.
+// A thin module around the DDS-free runtime (PX4's way): the replanning session and the
+// exploration driver (rt/) do the planning; the participant owns the DDS entities, its threads
+// (rt/dds/src/participant_threads.hpp: receive, planning, publish, target) and its two run
+// loops. The receive side validates every sample and keeps the map in sync, the planning side
+// runs one cycle per period (SCHED_DEADLINE where granted) and never calls into DDS, the publish
+// side writes plans and status; everything crossing between them goes through bounded,
+// lock-free hand-offs (rt/dds/src/handoff.hpp).
 //
 // Lockstep (a simulator that waits for each plan says so in its states): no periodic thread;
 // run()'s thread plans one cycle for each state, once the map has every update sensed before
@@ -61,14 +51,14 @@ struct PlannerParticipantConfig {
   std::uint32_t max_edges = 0;  // 0: 400 per millisecond of wall-clock budget (lockstep: 4 cycles)
   // Lockstep (the vehicle's states ask for it: a simulator that waits for each plan): one cycle
   // per state, growing this many edges whatever the time, so that a seed reproduces a run.
-  // 1000 is about what 2.5 ms grow on the machines measured here.
+  // 1000 is about what 2.5 ms of growth adds on a current x86 core.
   std::uint32_t lockstep_edges = 1000;
   std::uint32_t max_map_cells = 1U << 22;
   std::uint64_t seed = 1;
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
   std::chrono::nanoseconds startup_timeout{0};  // 0: wait for ever
   double duration_s = 0.0;                      // wall clock; 0: until request_stop()
-  // Without a goal the planner explores (GRIP.md section 3): its target is the frontier group
+  // Without a goal the planner explores (the paper's Sec. IV): its target is the frontier group
   // chosen every cycle and its plan the trajectory of least visibility/length weight. A goal
   // that arrives later takes over. A goal is waited for this long after the map is in sync.
   bool explore_without_goal = true;
