@@ -18,7 +18,7 @@
 #include "grip/common/assert.hpp"
 #include "grip/platform/os_call.hpp"
 #include "grip/platform/thread.hpp"
-#include "proc_files.hpp"
+#include "grip/platform/proc_files.hpp"
 
 namespace grip::platform {
 

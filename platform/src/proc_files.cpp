@@ -1,4 +1,4 @@
-#include "proc_files.hpp"
+#include "grip/platform/proc_files.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

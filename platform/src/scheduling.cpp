@@ -17,7 +17,7 @@
 #include "grip/common/enum_names.hpp"
 #include "grip/platform/os_call.hpp"
 #include "privileges.hpp"
-#include "proc_files.hpp"
+#include "grip/platform/proc_files.hpp"
 #include "scheduling_diagnosis.hpp"
 
 namespace grip::platform {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "grip/platform/os_call.hpp"
-#include "proc_files.hpp"
+#include "grip/platform/proc_files.hpp"
 
 namespace grip::platform::detail {
 namespace {

@@ -26,7 +26,7 @@
 #include "grip/common/random.hpp"
 #include "grip/platform/alloc_counter.hpp"
 #include "grip/platform/clock.hpp"
-#include "grip/platform/load_generator.hpp"
+#include "grip/tools/load_generator.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/cycle_sizing.hpp"
 #include "grip/rt/map_changes.hpp"
@@ -149,7 +149,7 @@ class Environment {
 
 template <VehicleModel V>
 int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
-               platform::OverrunWatcher& overruns, platform::LoadGenerator& load,
+               platform::OverrunWatcher& overruns, LoadGenerator& load,
                platform::PolicyRequest policy) {
   const double period_s = o.period_ms / 1e3;
   rt::CycleBudget budget;
@@ -449,7 +449,7 @@ int run_stress_command(const StressOptions& o) {
     std::cerr << "grip stress: " << s.error().message << "\n";
     return 2;
   }
-  auto load_kind = platform::parse_load(o.load);
+  auto load_kind = parse_load(o.load);
   auto policy = platform::parse_policy_request(o.policy);
   auto kind = vehicle_kind_from_name(o.robot);
   auto scene = make_scene(o.scene);
@@ -467,9 +467,9 @@ int run_stress_command(const StressOptions& o) {
     std::cerr << "grip stress: " << overruns.error().message << "\n";
     return 2;
   }
-  platform::LoadOptions load_options;
+  LoadOptions load_options;
   load_options.max_duration = std::chrono::seconds(static_cast<long>(o.duration_s) + 30);
-  auto load = platform::LoadGenerator::start(*load_kind, load_options);
+  auto load = LoadGenerator::start(*load_kind, load_options);
   if (!load) {
     std::cerr << "grip stress: " << load.error().message << "\n";
     return 2;

@@ -1,4 +1,4 @@
-#include "grip/platform/load_generator.hpp"
+#include "grip/tools/load_generator.hpp"
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -20,7 +20,7 @@
 #include <type_traits>
 #include <utility>
 
-namespace grip::platform {
+namespace grip::tools {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -468,4 +468,4 @@ TEST(LoadGenerator, MovingHandsOverTheLoadAndAssigningOverOneStopsIt) {
 }
 
 }  // namespace
-}  // namespace grip::platform
+}  // namespace grip::tools

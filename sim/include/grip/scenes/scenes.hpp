@@ -1,5 +1,5 @@
 #pragma once
-// Built-in scenes in the spirit of the paper's (GRIP.md section 5): "meandros" (a long
+// Built-in scenes in the spirit of the paper's (Sec. VI of Bekris and Kavraki 2007): "meandros" (a long
 // serpentine of corridors), "labyrinth" (a perfect maze) and "rooms" (rooms joined by doors).
 // Each is 30 m x 30 m at 0.1 m cells (300 x 300), fully known (every cell kFree or kObstacle),
 // walled by a 0.3 m border, and deterministic: identical on every run and standard library.

@@ -1,4 +1,4 @@
-#include "grip/platform/load_generator.hpp"
+#include "grip/tools/load_generator.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -23,9 +23,11 @@
 #include "grip/platform/clock.hpp"
 #include "grip/platform/os_call.hpp"
 #include "grip/platform/thread.hpp"
-#include "proc_files.hpp"
+#include "grip/platform/proc_files.hpp"
 
-namespace grip::platform {
+namespace grip::tools {
+
+using namespace platform;  // os calls, clocks, threads
 namespace {
 
 constexpr std::size_t kPageBytes = 4096;  // the built-in memory load writes one byte per page
@@ -64,9 +66,9 @@ Result<int> online_cpus() {
 
 // 1/8 of MemTotal, capped at 2 GiB, in whole pages.
 Result<std::size_t> default_memory_bytes() {
-  const Result<std::string> meminfo = detail::read_small_file("/proc/meminfo");
+  const Result<std::string> meminfo = platform::detail::read_small_file("/proc/meminfo");
   if (!meminfo.ok()) return meminfo.error();
-  const std::optional<std::string_view> total = detail::status_field(*meminfo, "MemTotal");
+  const std::optional<std::string_view> total = platform::detail::status_field(*meminfo, "MemTotal");
   std::uint64_t kib = 0;
   if (!total ||
       std::from_chars(total->data(), total->data() + total->size(), kib).ec != std::errc{}) {
@@ -551,4 +553,4 @@ Result<LoadGenerator> LoadGenerator::start(LoadKind kind, const LoadOptions& opt
   return generator;
 }
 
-}  // namespace grip::platform
+}  // namespace grip::tools

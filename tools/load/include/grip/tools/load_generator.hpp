@@ -28,7 +28,7 @@
 
 #include "grip/common/result.hpp"
 
-namespace grip::platform {
+namespace grip::tools {
 
 enum class LoadKind {
   kNone,    // nothing runs
@@ -108,4 +108,4 @@ class LoadGenerator {
   std::unique_ptr<State> state_;
 };
 
-}  // namespace grip::platform
+}  // namespace grip::tools

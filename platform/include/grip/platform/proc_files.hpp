@@ -1,6 +1,6 @@
 #pragma once
-// Private to grip_platform: reading the kernel's small text files (/proc, /sys) that explain why
-// a call was refused. Start-up only: everything here allocates.
+// Reading the kernel's small text files (/proc, /sys): why a call was refused, what the machine
+// has. Start-up only: everything here allocates.
 
 #include <cstdint>
 #include <optional>
