@@ -1,7 +1,8 @@
 #pragma once
 // The planner participant's threads, in one table: what each is called (top -H, ps -L, gdb), the
 // policy it asks for and its priority. Service threads start at creation, before the planning
-// thread, which under SCHED_DEADLINE could not create them. None is pinned to a CPU.
+// thread, which under SCHED_DEADLINE could not create them. None is pinned to a CPU: the kernel
+// refuses SCHED_DEADLINE to a thread whose affinity is a subset of the CPUs it balances over.
 
 #include "grip/platform/scheduling.hpp"
 
