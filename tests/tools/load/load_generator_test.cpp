@@ -131,6 +131,10 @@ int processes_in_group(int group, bool count_zombies = true) {
   return count;
 }
 
+// How long a test waits for what a working load does within a second or so: long, because a
+// loaded machine may starve the load's threads, and only a broken load ever reaches it.
+constexpr std::chrono::milliseconds kPatience{30000};
+
 // Polls `done` every 20 ms for up to `limit`; the seconds it took, or nullopt on time-out.
 template <typename Done>
 std::optional<double> seconds_until(Done done, std::chrono::milliseconds limit) {
@@ -145,7 +149,7 @@ std::optional<double> seconds_until(Done done, std::chrono::milliseconds limit) 
 // A joined thread's OS task lingers a moment in /proc (the kernel wakes the joiner before it
 // reaps the task), so a stopped load's threads are waited for rather than counted at once.
 bool threads_gone(const std::string& name) {
-  return seconds_until([&] { return threads_named(name) == 0; }, milliseconds(1000)).has_value();
+  return seconds_until([&] { return threads_named(name) == 0; }, kPatience).has_value();
 }
 
 LoadOptions built_in() {
@@ -221,17 +225,14 @@ TEST(LoadGenerator, BuiltInCpuLoadSpinsOneNamedThreadPerCpuUntilStopped) {
                                      (online_cpus() == 1 ? " CPU hog thread" : " CPU hog threads") +
                                      ", stopping after 3600 s");
 
-  // WHEN it runs for about 300 ms
+  // WHEN this thread only waits
   const double cpu_before = cpu_seconds();
-  const Clock::time_point start = Clock::now();
-  std::this_thread::sleep_for(milliseconds(300));
-  const double cpu_used = cpu_seconds() - cpu_before;
-  const double wall = seconds_since(start);
 
-  // THEN the process burns CPU while this thread sleeps (loose: the machine is shared), and the
+  // THEN the process burns CPU all the same (how fast depends on who else runs here), and the
   // hogs are visible under their name
+  EXPECT_TRUE(seconds_until([&] { return cpu_seconds() - cpu_before >= 0.3; }, kPatience))
+      << "the hogs burnt only " << cpu_seconds() - cpu_before << " s of CPU";
   EXPECT_TRUE(load->running());
-  EXPECT_GE(cpu_used, 0.5 * wall) << "cpu " << cpu_used << " s over " << wall << " s";
   EXPECT_EQ(threads_named("grip-load-cpu"), online_cpus());
 
   // WHEN stopped THEN the threads are gone
@@ -250,13 +251,12 @@ TEST(LoadGenerator, BuiltInMemoryLoadKeepsFaultingPagesIn) {
   EXPECT_TRUE(contains(load->description(), "built-in: 1 thread touching 64 MiB"))
       << load->description();
 
-  // WHEN it runs for about 300 ms
+  // WHEN it runs
   const long faults_before = minor_faults();
-  std::this_thread::sleep_for(milliseconds(300));
-  const long faults = minor_faults() - faults_before;
 
-  // THEN pages keep faulting in: at least half a pass, though one pass takes a few tens of ms
-  EXPECT_GE(faults, 8192);
+  // THEN pages keep faulting in: two whole passes over the buffer
+  EXPECT_TRUE(seconds_until([&] { return minor_faults() - faults_before >= 2 * 16384; }, kPatience))
+      << "only " << minor_faults() - faults_before << " pages faulted in";
   EXPECT_EQ(threads_named("grip-load-mem"), 1);
   EXPECT_EQ(threads_named("grip-load-cpu"), 0);
 
@@ -313,7 +313,7 @@ TEST(LoadGenerator, StressNgRunsAsAChildGroupAndStopLeavesNoProcess) {
                                      version + ")");
   // AND its workers join the group (stress-ng forks them after starting)
   const std::optional<double> workers =
-      seconds_until([&] { return processes_in_group(pid) >= 3; }, milliseconds(2000));
+      seconds_until([&] { return processes_in_group(pid) >= 3; }, kPatience);
   EXPECT_TRUE(workers.has_value()) << processes_in_group(pid) << " processes in the group";
 
   // WHEN stopped THEN the child is reaped and nothing of its group is left
@@ -357,9 +357,8 @@ TEST(LoadGenerator, StressNgDiesWithTheProcessThatStartedIt) {
 
   // THEN PR_SET_PDEATHSIG kills stress-ng, and its workers follow (nothing of the group keeps
   // running; an orphan may stay a zombie if this machine's init does not reap)
-  const std::optional<double> gone =
-      seconds_until([&] { return processes_in_group(stress_ng, /*count_zombies=*/false) == 0; },
-                    milliseconds(3000));
+  const std::optional<double> gone = seconds_until(
+      [&] { return processes_in_group(stress_ng, /*count_zombies=*/false) == 0; }, kPatience);
   EXPECT_TRUE(gone.has_value()) << processes_in_group(stress_ng, false)
                                 << " stress-ng processes still alive";
 }
@@ -419,9 +418,8 @@ TEST(LoadGenerator, BuiltInLoadStopsByItselfAfterMaxDuration) {
   ASSERT_TRUE(load.ok()) << load.error().message;
   EXPECT_TRUE(contains(load->description(), "stopping after 1 s")) << load->description();
 
-  const std::optional<double> ended =
-      seconds_until([&] { return !load->running(); }, milliseconds(3000));
-  ASSERT_TRUE(ended.has_value()) << "still running 3 s after a 1 s safety timeout";
+  const std::optional<double> ended = seconds_until([&] { return !load->running(); }, kPatience);
+  ASSERT_TRUE(ended.has_value()) << "still running long after a 1 s safety timeout";
   EXPECT_GE(*ended, 0.9);
   // A load thread counts itself out just before it returns: the OS task goes a moment later.
   EXPECT_TRUE(threads_gone("grip-load-cpu")) << "the threads did not end; stop() only joins them";
@@ -437,9 +435,8 @@ TEST(LoadGenerator, PreferredStressNgAlsoStopsByItselfAfterMaxDuration) {
   EXPECT_EQ(load->uses_stress_ng(), stress_ng_installed()) << load->description();
   const int pid = load->child_pid();
 
-  const std::optional<double> ended =
-      seconds_until([&] { return !load->running(); }, milliseconds(4000));
-  ASSERT_TRUE(ended.has_value()) << "still running 4 s after a 1 s safety timeout";
+  const std::optional<double> ended = seconds_until([&] { return !load->running(); }, kPatience);
+  ASSERT_TRUE(ended.has_value()) << "still running long after a 1 s safety timeout";
   EXPECT_GE(*ended, 0.9);
   load->stop();
   if (pid > 0) {
