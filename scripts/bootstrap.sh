@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   ccache                 # CI's fresh clone reuses what earlier builds compiled
+  help2man               # the man page grip(1), from `grip --help`
   libeigen3-dev          # fixed-size vehicle states
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev           # the grip command line

@@ -1,11 +1,17 @@
 // grip: the command of the GRIP real-time planning runtime.
 
+#include <string>
+
 #include <CLI/CLI.hpp>
 
+#include "build_info.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"grip: GRIP (Greedy, Incremental, Path-directed) kinodynamic replanning runtime"};
+  app.set_version_flag("--version", "grip " + std::string(grip::tools::grip_version()) +
+                                        " (revision " + std::string(grip::tools::grip_revision()) +
+                                        ")");
   app.require_subcommand(1);
   grip::tools::register_scene_command(app);
   grip::tools::register_plan_command(app);
