@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "report_file.hpp"
 #include "standalone.hpp"
 #include "stats.hpp"
 
@@ -241,12 +242,7 @@ int run_bench_paper(const BenchOptions& o) {
   if (wants("table2")) report["time_250_edges"] = run_time_250_edges(o);
   if (wants("fig7")) report["safety_overhead"] = run_safety_overhead(o);
   if (!o.json.empty()) {
-    std::ofstream out(o.json);
-    out << report.dump(2) << "\n";
-    if (!out) {
-      std::cerr << "grip bench paper: cannot write '" << o.json << "'\n";
-      return 1;
-    }
+    if (!write_report("grip bench paper", o.json, std::move(report))) return 1;
     std::cout << "\nwrote " << o.json << "\n";
   }
   return 0;

@@ -44,6 +44,7 @@
 #include "grip/scenes/scenes.hpp"
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/sim_participant.hpp"
+#include "report_file.hpp"
 #include "stats.hpp"
 
 namespace grip::tools {
@@ -406,10 +407,7 @@ int run_bench_dds(const BenchDdsOptions& o) {
       ours.distance_m, static_cast<unsigned long long>(ours.goals_reached),
       static_cast<unsigned long long>(ours.refused), static_cast<unsigned long long>(off_plans));
   if (!o.planner_report.empty()) {
-    std::ofstream out(o.planner_report);
-    out << nlohmann::json(ours.reports).dump(2) << "\n";
-    if (!out) {
-      std::cerr << "grip bench dds: cannot write '" << o.planner_report << "'\n";
+    if (!write_report("grip bench dds", o.planner_report, nlohmann::json(ours.reports))) {
       return 1;
     }
   }
@@ -440,12 +438,7 @@ int run_bench_dds(const BenchDdsOptions& o) {
     j["p99_ratio"] = our_p99 / their_p99;
     j["duration_s"] = o.duration_s;
     j["rounds"] = o.rounds;
-    std::ofstream out(o.json);
-    out << j.dump(2) << "\n";
-    if (!out) {
-      std::cerr << "grip bench dds: cannot write '" << o.json << "'\n";
-      return 1;
-    }
+    if (!write_report("grip bench dds", o.json, std::move(j))) return 1;
   }
   return 0;
 }

@@ -22,6 +22,7 @@
 
 #include "child.hpp"
 #include "commands.hpp"
+#include "report_file.hpp"
 #include "stats.hpp"
 
 namespace grip::tools {
@@ -321,12 +322,7 @@ int run_bench(const BenchExploreOptions& o) {
                        {"target_met", r.target_met(o.no_safety)}});
     }
     j["table"] = table;
-    std::ofstream out(o.json);
-    out << j.dump(1) << "\n";
-    if (!out) {
-      std::cerr << "grip bench explore: cannot write " << o.json << "\n";
-      return 1;
-    }
+    if (!write_report("grip bench explore", o.json, std::move(j), 1)) return 1;
   }
   return 0;
 }

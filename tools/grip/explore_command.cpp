@@ -31,6 +31,7 @@
 #include "grip/sim/start_pose.hpp"
 #include "grip/vehicles/default_vehicle.hpp"
 #include "render.hpp"
+#include "report_file.hpp"
 #include "speed_profile.hpp"
 
 namespace grip::tools {
@@ -221,12 +222,7 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
                                     : "")
             << "), contingency stops " << r.contingency_stops << "\n";
   if (!o.report.empty()) {
-    std::ofstream out(o.report);
-    out << report_json(o, world, r).dump(1) << "\n";
-    if (!out) {
-      std::cerr << command << ": cannot write " << o.report << "\n";
-      return 1;
-    }
+    if (!write_report(command, o.report, report_json(o, world, r), 1)) return 1;
   }
   if (!o.image.empty()) {
     if (Status s = draw_run(world, r, tree, o.image); !s) {

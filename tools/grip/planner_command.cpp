@@ -18,6 +18,7 @@
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
 #include "latency_json.hpp"
+#include "report_file.hpp"
 
 namespace grip::tools {
 
@@ -181,12 +182,7 @@ int run_planner(const PlannerOptions& o) {
     j["compute_us"] = latency_json_us(r.compute);
     j["plan_handoff_us"] = latency_json_us(r.plan_handoff);
     j["plan_write_us"] = latency_json_us(r.plan_write);
-    std::ofstream out(o.report);
-    out << j.dump(2) << "\n";
-    if (!out) {
-      std::cerr << "grip planner: cannot write " << o.report << "\n";
-      return 1;
-    }
+    if (!write_report("grip planner", o.report, std::move(j))) return 1;
   }
   return 0;
 }

@@ -26,14 +26,15 @@
 #include "grip/common/random.hpp"
 #include "grip/platform/alloc_counter.hpp"
 #include "grip/platform/clock.hpp"
-#include "grip/tools/load_generator.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/cycle_sizing.hpp"
 #include "grip/rt/map_changes.hpp"
 #include "grip/rt/periodic_loop.hpp"
 #include "grip/rt/replanning_cycle.hpp"
 #include "grip/rt/triple_buffer.hpp"
+#include "grip/tools/load_generator.hpp"
 #include "latency_json.hpp"
+#include "report_file.hpp"
 #include "standalone.hpp"
 
 namespace grip::tools {
@@ -428,12 +429,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
     std::cout << "  " << count << " cycles could not plan: " << status << "\n";
   }
   if (!o.report.empty()) {
-    std::ofstream out(o.report);
-    out << report.dump(2) << "\n";
-    if (!out) {
-      std::cerr << "grip stress: cannot write '" << o.report << "'\n";
-      return 1;
-    }
+    if (!write_report("grip stress", o.report, std::move(report))) return 1;
     std::cout << "  report: " << o.report << "\n";
   }
   if (o.max_miss_rate >= 0.0 && miss_rate > o.max_miss_rate) {

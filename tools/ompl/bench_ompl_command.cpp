@@ -25,6 +25,7 @@
 #include "commands.hpp"
 #include "comparison.hpp"
 #include "report.hpp"
+#include "report_file.hpp"
 
 namespace grip::tools {
 
@@ -222,12 +223,7 @@ int run_bench_ompl(const BenchOmplOptions& o) {
     report["summary"] = nlohmann::json::array();
     for (const auto& s : summaries) report["summary"].push_back(ompl_bridge::to_json(s));
     report["targets"] = ompl_bridge::to_json(targets);
-    std::ofstream out(o.json);
-    out << report.dump(2) << "\n";
-    if (!out) {
-      std::cerr << "grip bench ompl: cannot write '" << o.json << "'\n";
-      return 1;
-    }
+    if (!write_report("grip bench ompl", o.json, std::move(report))) return 1;
     std::cout << "wrote " << o.json << "\n";
   }
   return rc;
