@@ -20,6 +20,8 @@ void register_stress_command(CLI::App& app);
 void register_planner_command(CLI::App& app);
 void register_explore_commands(CLI::App& app);  // `grip explore` and `grip sim`
 void register_render_command(CLI::App& app);    // figures from their reports
+void register_echo_command(CLI::App& app);      // a topic's samples as JSON lines
+void register_goal_command(CLI::App& app);      // a goal for the planner
 // Benchmarks registered on `bench` besides `paper`: `dds`, `explore`, and `ompl` (tools/ompl; a
 // stub there when built without OMPL).
 void register_bench_dds_command(CLI::App& bench);

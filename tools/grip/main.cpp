@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   grip::tools::register_planner_command(app);
   grip::tools::register_explore_commands(app);
   grip::tools::register_render_command(app);
+  grip::tools::register_echo_command(app);
+  grip::tools::register_goal_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

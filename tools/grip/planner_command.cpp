@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "cycle_options.hpp"
 #include "cycle_trace.hpp"
+#include "dds_config.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
 #include "latency_json.hpp"
@@ -61,12 +62,9 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o) {
     return invalid_argument("--domain must be below " + std::to_string(DDS_DOMAIN_DEFAULT));
   }
   config.domain = o.domain;
-  if (!o.dds_config.empty()) {
-    if (access(o.dds_config.c_str(), R_OK) != 0) {
-      return invalid_argument("--dds-config: cannot read '" + o.dds_config + "'");
-    }
-    config.dds_config = "file://" + o.dds_config;
-  }
+  Result<std::string> dds_config = choose_dds_config(o.dds_config);
+  if (!dds_config) return dds_config.error();
+  config.dds_config = *dds_config;
   if (Status s = validate_cycle_options(o.period_ms, o.budget_ms, o.margin_ms, o.max_edges); !s) {
     return s.error();
   }
@@ -122,7 +120,7 @@ int run_planner(const PlannerOptions& o) {
   std::signal(SIGINT, stop_on_signal);
   std::signal(SIGTERM, stop_on_signal);
   std::cerr << "grip planner: " << o.robot << " on DDS domain " << o.domain << " ("
-            << (o.dds_config.empty() ? "loopback-only configuration" : o.dds_config)
+            << (config->dds_config.empty() ? "loopback-only configuration" : config->dds_config)
             << "); waiting for map, vehicle state and goal\n";
   auto report = (*planner)->run();
   g_running.store(nullptr);
@@ -198,7 +196,8 @@ void register_planner_command(CLI::App& app) {
   cmd->add_option("--robot", o->robot, "dd-vel, dd-accel or car")->capture_default_str();
   cmd->add_option("--domain", o->domain, "DDS domain id")->capture_default_str();
   cmd->add_option("--dds-config", o->dds_config,
-                  "Cyclone DDS XML configuration file (default: built-in, loopback only)");
+                  "Cyclone DDS XML configuration file (default: $CYCLONEDDS_URI, else the built-in "
+                  "loopback-only one)");
   cmd->add_option("--period-ms", o->period_ms, "Cycle T in vehicle time [ms]")
       ->capture_default_str();
   cmd->add_option("--budget-ms", o->budget_ms, "Planning time per cycle in vehicle time [ms]")

@@ -56,6 +56,12 @@ class Writer {
         readers, timeout, "publication_matched");
   }
 
+  // Waits until every matched reader has acknowledged every sample written (tools only: a
+  // process that writes once and exits must not leave before its sample arrived).
+  Status wait_for_acks(std::chrono::nanoseconds timeout) const {
+    return check(dds_wait_for_acks(writer_.get(), timeout.count()), "dds_wait_for_acks");
+  }
+
   dds_entity_t get() const noexcept { return writer_.get(); }
 
  private:

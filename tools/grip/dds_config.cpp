@@ -1,0 +1,22 @@
+#include "dds_config.hpp"
+
+#include <unistd.h>
+
+#include <cstdlib>
+
+namespace grip::tools {
+
+Result<std::string> choose_dds_config(const std::string& dds_config_option) {
+  if (!dds_config_option.empty()) {
+    if (access(dds_config_option.c_str(), R_OK) != 0) {
+      return invalid_argument("--dds-config: cannot read '" + dds_config_option + "'");
+    }
+    return "file://" + dds_config_option;
+  }
+  if (const char* uri = std::getenv("CYCLONEDDS_URI"); uri != nullptr && *uri != '\0') {
+    return std::string(uri);
+  }
+  return std::string();
+}
+
+}  // namespace grip::tools

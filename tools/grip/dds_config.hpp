@@ -1,0 +1,17 @@
+#pragma once
+// Which Cyclone configuration a command that talks to a vehicle or a planner on a real network
+// uses (`grip planner`, `grip echo`, `grip goal`): the file given with --dds-config, else the
+// CYCLONEDDS_URI of the environment, as Cyclone users expect, else the project's loopback-only
+// configuration. `grip explore`, `grip sim` and the benchmarks always stay on loopback.
+
+#include <string>
+
+#include "grip/common/result.hpp"
+
+namespace grip::tools {
+
+// For Participant::create: a file:// URI, the environment's value, or empty (the built-in
+// loopback configuration). Refuses a --dds-config file that cannot be read, naming it.
+Result<std::string> choose_dds_config(const std::string& dds_config_option);
+
+}  // namespace grip::tools

@@ -1,0 +1,153 @@
+// `grip goal X Y`: sends a goal region to the planner on a domain, as a mission side would. The
+// goal topic is durable (TRANSIENT_LOCAL) for as long as its writer lives, so the command waits
+// until a planner has acknowledged the goal, and with --stay goes on offering it to planners
+// that start later, until Ctrl-C.
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "commands.hpp"
+#include "dds_config.hpp"
+#include "goal.h"
+#include "grip/link/topics.hpp"
+#include "grip/platform/clock.hpp"
+#include "grip/platform/dds/reader.hpp"
+#include "grip/platform/dds/waitset.hpp"
+#include "grip/platform/dds/writer.hpp"
+
+namespace grip::tools {
+
+namespace {
+
+namespace pdds = platform::dds;
+
+struct GoalOptions {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double radius_m = 0.5;
+  std::uint32_t domain = 0;
+  std::string dds_config;
+  double lease_ms = 500.0;
+  double wait_s = 10.0;
+  bool stay = false;
+};
+
+std::atomic<bool> g_stop{false};
+extern "C" void stop_goal(int) { g_stop.store(true); }
+
+// The goal that is still offered on the topic, if any writer offers one: the new goal's
+// sequence number follows it. Discovery on a network takes a moment; a second is allowed.
+std::uint64_t last_offered_sequence(const pdds::Participant& participant,
+                                    const link::LinkTiming& timing) {
+  auto reader = pdds::Reader<grip_msg_Goal>::create(participant, &grip_msg_Goal_desc,
+                                                    link::kGoalTopic, link::goal_qos(timing));
+  auto waitset = pdds::WaitSet::create(participant);
+  if (!reader || !waitset || !waitset->attach_data_available(reader->get())) return 0;
+  if (!reader->wait_for_writers(1, std::chrono::seconds(1))) return 0;
+  std::uint64_t last = 0;
+  auto buffer = std::make_unique<pdds::SampleBuffer<grip_msg_Goal, 4>>(&grip_msg_Goal_desc);
+  const Result<bool> woke = waitset->wait(std::chrono::seconds(1));
+  if (!woke || !*woke) return 0;
+  const Result<std::size_t> taken = reader->take(*buffer);
+  for (std::size_t i = 0; taken && i < *taken; ++i) {
+    last = std::max(last, (*buffer)[i].sequence_number);
+  }
+  return last;
+}
+
+int run_goal(const GoalOptions& o) {
+  if (!std::isfinite(o.x_m) || !std::isfinite(o.y_m)) {
+    std::cerr << "grip goal: X and Y must be finite numbers\n";
+    return 2;
+  }
+  const Result<std::string> config = choose_dds_config(o.dds_config);
+  if (!config) {
+    std::cerr << "grip goal: " << config.error().message << "\n";
+    return 2;
+  }
+  auto participant = pdds::Participant::create(o.domain, *config);
+  if (!participant) {
+    std::cerr << "grip goal: " << participant.error().message << "\n";
+    return 1;
+  }
+  link::LinkTiming timing;
+  timing.liveliness_lease = std::chrono::microseconds(std::llround(o.lease_ms * 1000.0));
+
+  grip_msg_Goal goal{};
+  goal.sequence_number = last_offered_sequence(*participant, timing) + 1;
+  goal.stamp_ns = static_cast<std::uint64_t>(platform::now_ns());
+  goal.x_m = o.x_m;
+  goal.y_m = o.y_m;
+  goal.radius_m = o.radius_m;
+  auto writer = pdds::Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc,
+                                                    link::kGoalTopic, link::goal_qos(timing));
+  if (!writer) {
+    std::cerr << "grip goal: " << writer.error().message << "\n";
+    return 1;
+  }
+  const auto wait = std::chrono::milliseconds(std::llround(o.wait_s * 1000.0));
+  if (!writer->wait_for_readers(1, wait)) {
+    std::cerr << "grip goal: no planner on DDS domain " << o.domain << " within " << o.wait_s
+              << " s\n";
+    return 3;
+  }
+  if (Status s = writer->write(goal); !s) {
+    std::cerr << "grip goal: " << s.error().message << "\n";
+    return 1;
+  }
+  if (Status s = writer->wait_for_acks(wait); !s) {
+    std::cerr << "grip goal: the planner did not acknowledge the goal within " << o.wait_s << " s ("
+              << s.error().message << ")\n";
+    return 3;
+  }
+  std::cout << "grip goal: goal " << goal.sequence_number << " at (" << o.x_m << ", " << o.y_m
+            << ") radius " << o.radius_m << " m delivered on DDS domain " << o.domain << "\n";
+  if (o.stay) {
+    std::signal(SIGINT, stop_goal);
+    std::signal(SIGTERM, stop_goal);
+    std::cout << "grip goal: offering it to planners that start later until Ctrl-C\n" << std::flush;
+    while (!g_stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_goal_command(CLI::App& app) {
+  auto o = std::make_shared<GoalOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "goal", "Send a goal region to the planner; exits once a planner acknowledged it");
+  cmd->add_option("x", o->x_m, "Goal x [m], in the map's frame")->required();
+  cmd->add_option("y", o->y_m, "Goal y [m]")->required();
+  cmd->add_option("--radius", o->radius_m, "Goal region radius [m]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--domain", o->domain, "DDS domain id")
+      ->check(CLI::Range(0U, static_cast<std::uint32_t>(DDS_DOMAIN_DEFAULT) - 1U))
+      ->capture_default_str();
+  cmd->add_option("--dds-config", o->dds_config,
+                  "Cyclone DDS XML configuration file (default: $CYCLONEDDS_URI, else the "
+                  "built-in loopback-only one)");
+  cmd->add_option("--lease-ms", o->lease_ms,
+                  "Liveliness lease [ms]: at most the planner's --lease-ms")
+      ->check(CLI::Range(10.0, 3'600'000.0))
+      ->capture_default_str();
+  cmd->add_option("--wait", o->wait_s, "Seconds to wait for a planner to take the goal")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--stay", o->stay, "Keep offering the goal to planners that start later");
+  cmd->callback([o]() {
+    const int rc = run_goal(*o);
+    if (rc != 0) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace grip::tools
