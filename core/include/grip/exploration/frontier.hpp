@@ -125,7 +125,7 @@ class FrontierMap {
   // The target group's cells (empty without a target): the cells c of section 3's d(tr).
   std::span<const std::uint32_t> target_cells() const noexcept;
   // The cells from which the target group is approached (each once; empty without a
-  // target): the planner's target set F, Planner::retain(root, GoalCells{approach_cells()}, T).
+  // target): the planner's target set F, Planner::retain(root, Goal::cells(approach_cells()), T).
   std::span<const std::uint32_t> approach_cells() const noexcept { return approach_.span(); }
   // The robot's wavefront of the last update (rho_A* from the robot, in the chassis' space).
   const DistanceField& robot_field() const noexcept { return field_; }

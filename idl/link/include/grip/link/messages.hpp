@@ -85,8 +85,8 @@ Verdict check_map_update(const grip_msg_MapUpdate& msg, const MapGeometry* expec
 
 // A goal: finite, radius > 0, centre inside `grid`.
 Verdict check_goal(const grip_msg_Goal& msg, const OccupancyGrid& grid) noexcept;
-inline GoalRegion goal_from_wire(const grip_msg_Goal& msg) noexcept {
-  return GoalRegion{msg.x_m, msg.y_m, msg.radius_m};
+inline Goal goal_from_wire(const grip_msg_Goal& msg) noexcept {
+  return Goal::disk(msg.x_m, msg.y_m, msg.radius_m);
 }
 
 // A plan, for the vehicle controller: the kind it drives, finite controls, durations > 0 and
