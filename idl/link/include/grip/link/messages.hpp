@@ -8,8 +8,9 @@
 #include <string_view>
 
 #include "goal.h"
-#include "grip/planner/planner.hpp"
+#include "grip/planner/goal.hpp"
 #include "grip/vehicles/vehicle.hpp"
+#include "grip/world/occupancy_grid.hpp"
 #include "map_update.h"
 #include "plan.h"
 #include "vehicle_state.h"
