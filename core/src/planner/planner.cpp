@@ -258,8 +258,8 @@ bool Planner<V>::iterate() noexcept {
     return expand_from(baseline_.select(tree_, target_.cells(), rng_)) != kNoHandle;
   }
 
-  // GRIP (section 2.2): pop the minimum score, propagate from a random state along it, and
-  // apply Eq. 2 to the parts of the selected edge whether or not the propagation succeeded.
+  // GRIP (the paper's Sec. III-B): pop the minimum score, propagate from a random state along it,
+  // and apply Eq. 2 to the parts of the selected edge whether or not the propagation succeeded.
   const EdgeHandle selected = heap_.pop();
   const double new_priority = std::fma(2.0, tree_.edge(selected).priority, 1.0);
   const double selected_rho_m = tree_.edge(selected).rho_m;
@@ -291,7 +291,7 @@ template <VehicleModel V>
 EdgeHandle Planner<V>::expand_from(TreeState from) noexcept {
   const TrajectoryHandle t = tree_.acquire_trajectory();
   GRIP_ASSERT(t != kNoHandle);  // solve() checked the room
-  // Random controls (section 2.2), and, if configured, now and then the braking maneuver (the
+  // Random controls (Sec. III-B), and, if configured, now and then the braking maneuver (the
   // paper allows controls from a maneuver set; see braking_control_fraction).
   const bool brake =
       config_.braking_control_fraction > 0.0 && rng_.uniform01() < config_.braking_control_fraction;

@@ -1,5 +1,5 @@
-// Path selection by the visibility/length weight of section 3, on a real planner tree: the
-// selector's choice is the brute-force minimum over every root-to-state trajectory, the
+// Path selection by the visibility/length weight of the paper's Sec. IV, on a real planner tree:
+// the selector's choice is the brute-force minimum over every root-to-state trajectory, the
 // trajectory that sees the frontier beats shorter ones that see nothing, and T is honoured.
 
 #include "grip/exploration/path_selector.hpp"

@@ -1,6 +1,6 @@
 #pragma once
-// The tree planner: GRIP's selection and propagation (GRIP.md section 2.2, Algorithm 1's main
-// loop) with safety at low cost (section 2.3), and the baselines of the paper's Fig. 5/6 on
+// The tree planner: GRIP's selection and propagation (the paper's Sec. III-B, Algorithm 1's main
+// loop) with safety at low cost (Sec. III-C), and the baselines of the paper's Fig. 5/6 on
 // the same tree, propagation and rho.
 //
 // Reads like OMPL's planners: set a problem, then solve(termination condition) returns a
@@ -123,7 +123,7 @@ class Planner {
     return TreeState{tree_.root(), tree_.edge(tree_.root()).last};
   }
   // The solution if solved, else the state with the best estimated arrival: rho plus the time
-  // from the root at a quarter of top speed (a plan should head to F and be short, section 1),
+  // from the root at a quarter of top speed (a plan should head to F and be short, Sec. II),
   // so that a meandering path that ends slightly closer does not win.
   TreeState best_state() const noexcept;
   double best_rho_m() const noexcept { return best_rho_; }
@@ -131,7 +131,7 @@ class Planner {
   // The state reached `step` integration steps from the root on the path to s, or an empty
   // TreeState when the path is shorter. With steps_per_record == 1 every step is recorded.
   TreeState state_at_step(TreeState s, std::uint32_t step) const noexcept;
-  // Lazy safety for the plan about to be committed (section 2.3): the latest state on the path
+  // Lazy safety for the plan about to be committed (Sec. III-C): the latest state on the path
   // to `target`, at `min_step` or later, whose braking contingency is collision-free (any such
   // state with SafetyCheck::kNone), or an empty TreeState when there is none.
   TreeState committable_state(TreeState target, std::uint32_t min_step) noexcept;
