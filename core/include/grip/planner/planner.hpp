@@ -10,8 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <optional>
-#include <span>
+#include <string>
 #include <vector>
 
 #include "grip/common/function_ref.hpp"
