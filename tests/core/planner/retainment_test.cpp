@@ -275,6 +275,9 @@ TEST_F(RetainmentTest, AGoalAdoptedWithItsRhoPlansAsOneWhoseRhoThePlannerCompute
   const std::uint32_t blocked[] = {grid.index(3, 3)};
   EXPECT_EQ(planner->adopt_goal(Goal::cells(blocked), field), RetainStatus::kGoalWithoutFreeCell);
   EXPECT_DOUBLE_EQ(planner->rho_field().distance_m(5.0, 5.0), rho_before);
+  // AND so is a disk: rho toward a disk is the planner's own to compute
+  EXPECT_EQ(planner->adopt_goal(Goal::disk(5.0, 5.0, 1.0), field), RetainStatus::kGoalNotCells);
+  EXPECT_DOUBLE_EQ(planner->rho_field().distance_m(5.0, 5.0), rho_before);
   ASSERT_EQ(
       planner->retain(planner->root_state(), Goal::cells(here), 1.0, nullptr, RhoUpdate::kKeep),
       RetainStatus::kOk);

@@ -1,7 +1,9 @@
 #pragma once
 // The tree planner: GRIP's selection and propagation (the paper's Sec. III-B, Algorithm 1's main
 // loop) with safety at low cost (Sec. III-C), and the baselines of the paper's Fig. 5/6 on
-// the same tree, propagation and rho.
+// the same tree, propagation and rho. Its parts in their own units: F on the grid
+// (target_set.hpp), tree retainment at the start of a cycle (retainment.hpp) and the baselines'
+// selection (baseline_selection.hpp).
 //
 // Reads like OMPL's planners: set a problem, then solve(termination condition) returns a
 // status. Everything is reserved by create(); solve() allocates nothing, never blocks and
