@@ -108,14 +108,14 @@ void ExplorationDriver<V>::take_over(ReplanningCycle<V>& cycle,
     // No reachable frontier is left (or the robot is off the map): stop where it stands.
     explored_ = status == ExplorationStatus::kComplete;
     const typename V::State& here = cycle.plan_start();
-    cycle.set_goal(GoalRegion{state_x(here), state_y(here), 0.5});
+    cycle.set_goal(Goal::disk(state_x(here), state_y(here), 0.5));
     return;
   }
   explored_ = false;
   has_target_ = true;
   target_x_m_ = target_.target_x_m();
   target_y_m_ = target_.target_y_m();
-  cycle.set_goal(GoalCells{target_.approach_cells()}, target_.rho());
+  cycle.set_goal(Goal::cells(target_.approach_cells()), &target_.rho());
   selector_.set_target(grid, target_.target_cells());
 }
 

@@ -80,27 +80,28 @@ ReplanningCycle<V>::ReplanningCycle(Planner<V> planner, const CycleConfig& confi
       commit_reserve_(config.commit_reserve_prior_ns) {}
 
 template <VehicleModel V>
-void ReplanningCycle<V>::set_goal(GoalCells goal) noexcept {
-  goal_cells_.clear();
-  for (const std::uint32_t c : goal.cells) {
-    if (!goal_cells_.push_back(c)) break;
+void ReplanningCycle<V>::set_goal(const Goal& goal, DistanceField* rho) noexcept {
+  if (goal.is_disk()) {
+    goal_ = goal;
+  } else {
+    if (goal.cells().data() != goal_cells_.span().data()) {  // not goal() again
+      goal_cells_.clear();
+      for (const std::uint32_t c : goal.cells()) {
+        if (!goal_cells_.push_back(c)) break;
+      }
+    }
+    goal_ = Goal::cells(goal_cells_.span());
   }
-  goal_is_cells_ = true;
   goal_changed_ = true;
   rho_adopted_ = false;
-}
-
-template <VehicleModel V>
-void ReplanningCycle<V>::set_goal(GoalCells goal, DistanceField& rho) noexcept {
-  set_goal(goal);
-  if (planner_.adopt_goal(GoalCells{goal_cells_.span()}, rho) == RetainStatus::kOk) {
+  if (rho != nullptr && planner_.adopt_goal(goal_, *rho) == RetainStatus::kOk) {
     goal_changed_ = false;
     rho_adopted_ = true;
   }
 }
 
 template <VehicleModel V>
-Status ReplanningCycle<V>::start(const State& q0, const GoalRegion& goal) {
+Status ReplanningCycle<V>::start(const State& q0, const Goal& goal) {
   if (auto s = planner_.set_problem(q0, goal); !s) return s;
   set_goal(goal);
   committed_ = TreeState{};
@@ -213,10 +214,7 @@ CycleOutcome ReplanningCycle<V>::run_growing(
           : RhoUpdate::kKeep;
   if (next_root.edge != kNoHandle) {
     const CellBox* blocked = blocked_noted_ ? &newly_blocked_ : nullptr;
-    out.retain_status = goal_is_cells_
-                            ? planner_.retain(next_root, GoalCells{goal_cells_.span()},
-                                              config_.cycle_s, blocked, rho)
-                            : planner_.retain(next_root, goal_, config_.cycle_s, blocked, rho);
+    out.retain_status = planner_.retain(next_root, goal_, config_.cycle_s, blocked, rho);
     out.edges_retained = planner_.last_retain().edges_kept;
   } else {
     out.retain_status = RetainStatus::kRootNotInTree;
@@ -237,9 +235,7 @@ CycleOutcome ReplanningCycle<V>::run_growing(
     resync_.reset();
     // rho as for a retainment: a restart is no reason to recompute it, and the whole-map
     // wavefront would take the cycle's growth (a vehicle restarted every cycle never moved).
-    out.retain_status =
-        goal_is_cells_ ? planner_.restart(q, GoalCells{goal_cells_.span()}, config_.cycle_s, rho)
-                       : planner_.restart(q, goal_, config_.cycle_s, rho);
+    out.retain_status = planner_.restart(q, goal_, config_.cycle_s, rho);
     committed_ = TreeState{};
   } else if (!planner_.contains(committed_)) {
     committed_ = TreeState{};  // the new map or T cut the rest of the previous plan

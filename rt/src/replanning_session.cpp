@@ -63,7 +63,7 @@ Status ReplanningSession<V>::create_cycle(double time_scale, bool lockstep, bool
 }
 
 template <VehicleModel V>
-Status ReplanningSession<V>::start(const VehicleSample& state, const GoalRegion& goal) {
+Status ReplanningSession<V>::start(const VehicleSample& state, const Goal& goal) {
   if (Status s = cycle_->start(state_of<V>(state), goal); !s) return s;
   note_state(state);
   return Ok{};

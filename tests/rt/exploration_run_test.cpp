@@ -101,7 +101,7 @@ ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double s
     sample.plan_cycle = executor.executing_tag();
   };
   measure();
-  EXPECT_TRUE(session.start(sample, GoalRegion{start_x, start_y, 1.0}));
+  EXPECT_TRUE(session.start(sample, Goal::disk(start_x, start_y, 1.0)));
   std::int64_t clock = 0;  // times the phases only: lockstep grows by edge count
   const auto now = [&clock] { return clock += 20'000; };
   const auto cycle_ns = static_cast<std::int64_t>(std::llround(config.cycle_s * 1e9));

@@ -40,7 +40,7 @@ class ReplanningCycleTest : public ::testing::Test {
     planner.max_trajectories = 10'000;
     cycle.emplace(ReplanningCycle<Car>::create(car, scene.grid, planner, config).value());
     ASSERT_TRUE(cycle->start(car.rest_state(scene.start_x_m, scene.start_y_m, 0.0),
-                             GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+                             Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m)));
   }
   CycleOutcome run_cycle() {
     const std::int64_t release = clock.now;
@@ -173,7 +173,7 @@ TEST_F(ReplanningCycleTest, RhoTowardAnUnchangedTargetIsRecomputedEveryRefreshCy
   // A target set again counts as new, even when it is the same: recomputed at once.
   run_after_map_change(4);
   EXPECT_NE(rho.source_revision(), scene.grid.revision());
-  cycle->set_goal(GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m});
+  cycle->set_goal(Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m));
   run_after_map_change(5);
   EXPECT_EQ(rho.source_revision(), scene.grid.revision());
 }
@@ -200,7 +200,7 @@ TEST_F(ReplanningCycleTest, ATargetGivenWithItsRhoIsPlannedTowardWithoutAWavefro
   const DistanceField& rho = cycle->planner().rho_field();
 
   // WHEN the cycle is given the target with it and runs on a changed map
-  cycle->set_goal(GoalCells{cells}, field);
+  cycle->set_goal(Goal::cells(cells), &field);
   const auto run_after_map_change = [&](int i) {
     const double x = 14.0 + 0.1 * i;
     scene.grid.fill_rect(x, 29.0, x + 0.05, 29.05, Cell::kObstacle);
@@ -246,7 +246,7 @@ TEST_F(ReplanningCycleTest, ARestingTreeAtItsCapacityWithoutAPlanIsSampledAfresh
   small.max_trajectories = 150;
   cycle.emplace(ReplanningCycle<Car>::create(car, scene.grid, small, config).value());
   const Car::State rest = car.rest_state(scene.start_x_m, scene.start_y_m, 0.0);
-  ASSERT_TRUE(cycle->start(rest, GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+  ASSERT_TRUE(cycle->start(rest, Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m)));
   const auto nothing = [](const Planner<Car>&) { return TreeState{}; };
   const auto racing = [this] { return clock.now += 1'000; };
   bool at_capacity = false;  // the last cycle filled the pools, pruned for room or grew nothing
@@ -311,7 +311,7 @@ TEST_F(ReplanningCycleTest, ARestartSaysWhyTheTreeWasNotKept) {
   Car::State moving = car.rest_state(scene.start_x_m, scene.start_y_m, 0.0);
   moving[3] = 1.0;
   ASSERT_TRUE(
-      cycle->start(moving, GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+      cycle->start(moving, Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m)));
   out = cycle->run([this] { return clock.read(); }, clock.now);  // no time to plan
   ASSERT_FALSE(out.plan_available);
   out = run_cycle();
@@ -417,7 +417,7 @@ TEST(ReplanningCycleArrival, AVelocityControlledRobotReachesTheGoalOfRooms) {
   planner.max_edges = 20'000;
   planner.max_trajectories = 10'000;
   auto cycle = ReplanningCycle<DdVelocity>::create(robot, scene.grid, planner, config).value();
-  const GoalRegion goal{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m};
+  const Goal goal = Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m);
   ASSERT_TRUE(cycle.start(robot.rest_state(scene.start_x_m, scene.start_y_m, 0.0), goal));
   FakeClock clock;
   int cycles = 0;

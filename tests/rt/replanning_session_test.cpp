@@ -39,7 +39,7 @@ class ReplanningSessionTest : public ::testing::Test {
     s.lockstep = true;
     return s;
   }
-  GoalRegion goal() const { return {scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}; }
+  Goal goal() const { return Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m); }
   SentPlan<DdVelocity> lockstep_cycle(const VehicleSample& state) {
     session->note_state(state);
     session->set_plan_start_after(state);

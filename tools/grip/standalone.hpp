@@ -30,8 +30,8 @@ inline PlannerConfig config_for_edge_cap(PlannerConfig config, std::uint64_t edg
   return config;
 }
 
-inline GoalRegion scene_goal(const Scene& scene) {
-  return GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m};
+inline Goal scene_goal(const Scene& scene) {
+  return Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m);
 }
 
 // Builds a planner for the scene, sets the problem (not timed) and solves until the goal, the

@@ -119,7 +119,7 @@ class Environment {
     return MapPatch{0, 0, -1, -1, Cell::kFree};  // nothing this time
   }
 
-  GoalRegion next_goal(const VehiclePose& vehicle) {
+  Goal next_goal(const VehiclePose& vehicle) {
     for (int attempt = 0; attempt < 200; ++attempt) {
       const int cx = static_cast<int>(rng_.below(static_cast<std::uint32_t>(ground_.width())));
       const int cy = static_cast<int>(rng_.below(static_cast<std::uint32_t>(ground_.height())));
@@ -128,9 +128,9 @@ class Environment {
       const double dx = x - vehicle.x_m;
       const double dy = y - vehicle.y_m;
       if (dx * dx + dy * dy < 8.0 * 8.0 || !free_block(cx - 7, cy - 7, 15)) continue;
-      return GoalRegion{x, y, 1.0};
+      return Goal::disk(x, y, 1.0);
     }
-    return GoalRegion{ground_.width_m() - 2.5, ground_.height_m() - 2.5, 1.0};
+    return Goal::disk(ground_.width_m() - 2.5, ground_.height_m() - 2.5, 1.0);
   }
 
  private:
@@ -174,9 +174,9 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   }
   Environment environment(scene.grid, o.seed);
   const auto start = vehicle.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad);
-  const GoalRegion first_goal =
-      o.static_world ? GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}
-                     : environment.next_goal({scene.start_x_m, scene.start_y_m});
+  const Goal first_goal = o.static_world
+                              ? Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m)
+                              : environment.next_goal({scene.start_x_m, scene.start_y_m});
   if (auto s = cycle->start(start, first_goal); !s) {
     std::cerr << "grip stress: " << s.error().message << "\n";
     return 2;
@@ -184,7 +184,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
 
   // Hand-offs: map patches and targets in, the vehicle's position out; none ever blocks.
   auto patches = std::make_unique<rt::SpscRing<MapPatch, 256>>();
-  auto goals = std::make_unique<rt::SpscRing<GoalRegion, 16>>();
+  auto goals = std::make_unique<rt::SpscRing<Goal, 16>>();  // disks: nothing they view
   auto pose = std::make_unique<rt::TripleBuffer<VehiclePose>>();
   OccupancyGrid& grid = scene.grid;
   auto body = [&, patches = patches.get(), goals = goals.get(), pose = pose.get()](
@@ -195,7 +195,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
       changes.apply(grid, CellBox{patch.x0, patch.y0, patch.x1, patch.y1}, patch.value);
     }
     rt::note_map_changes(*cycle, changes);
-    GoalRegion goal{};
+    Goal goal{};
     while (goals->try_pop(goal)) cycle->set_goal(goal);
     const rt::CycleOutcome out = cycle->run([] { return platform::now_ns(); }, deadline);
     const auto& q = cycle->plan_start();

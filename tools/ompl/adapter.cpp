@@ -12,22 +12,22 @@
 
 namespace grip::ompl_bridge {
 
-DiskGoal::DiskGoal(const ob::SpaceInformationPtr& si, const grip::GoalRegion& goal,
+DiskGoal::DiskGoal(const ob::SpaceInformationPtr& si, const grip::Goal& goal,
                    Bounds velocity_bounds)
     : ob::GoalSampleableRegion(si), goal_(goal), velocity_bounds_(std::move(velocity_bounds)) {
-  setThreshold(goal.radius_m);
+  setThreshold(goal.radius_m());
 }
 
 double DiskGoal::distanceGoal(const ob::State* st) const {
   const auto& pose = pose_of(st);
-  return std::hypot(pose.getX() - goal_.x_m, pose.getY() - goal_.y_m);
+  return std::hypot(pose.getX() - goal_.x_m(), pose.getY() - goal_.y_m());
 }
 
 void DiskGoal::sampleGoal(ob::State* st) const {
-  const double r = goal_.radius_m * std::sqrt(rng_.uniform01());
+  const double r = goal_.radius_m() * std::sqrt(rng_.uniform01());
   const double a = rng_.uniformReal(-std::numbers::pi, std::numbers::pi);
   auto& pose = pose_of(st);
-  pose.setXY(goal_.x_m + r * std::cos(a), goal_.y_m + r * std::sin(a));
+  pose.setXY(goal_.x_m() + r * std::cos(a), goal_.y_m() + r * std::sin(a));
   pose.setYaw(rng_.uniformReal(-std::numbers::pi, std::numbers::pi));
   if (!velocity_bounds_.empty()) {
     double* v = st->as<ob::CompoundState>()->as<ob::RealVectorStateSpace::StateType>(1)->values;

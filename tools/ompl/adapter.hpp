@@ -13,7 +13,7 @@
 //   validity       CollisionChecker::is_free with the planner's margin (the chassis grown by
 //                  half a step's motion), the planner's only per-step test (bounds hold by
 //                  construction: outside the grid is never free, velocities saturate);
-//   goal           the reference point within the goal radius (GoalRegion::contains);
+//   goal           the reference point within the goal radius (Goal::contains);
 //   projection     (x, y), the default projection for KPIECE1, PDST and EST.
 // Tools only: allocates and may throw (OMPL does). The grid must outlive everything built here.
 
@@ -227,18 +227,18 @@ class CoreValidityChecker : public ob::StateValidityChecker {
 };
 
 // F: the reference point within radius_m of the goal point. distanceGoal is the distance to
-// that point and the threshold is the radius, so isSatisfied agrees with GoalRegion::contains.
+// that point and the threshold is the radius, so isSatisfied agrees with Goal::contains.
 // Sampleable (uniform in the disk, heading and velocities uniform within their bounds) so that
 // the planners with a goal bias (RRT, SST, EST) can use it.
 class DiskGoal : public ob::GoalSampleableRegion {
  public:
-  DiskGoal(const ob::SpaceInformationPtr& si, const grip::GoalRegion& goal, Bounds velocity_bounds);
+  DiskGoal(const ob::SpaceInformationPtr& si, const grip::Goal& goal, Bounds velocity_bounds);
   double distanceGoal(const ob::State* st) const override;
   void sampleGoal(ob::State* st) const override;
   unsigned int maxSampleCount() const override;
 
  private:
-  grip::GoalRegion goal_;  // (ob::GoalRegion is a base class: the name needs qualifying)
+  grip::Goal goal_;  // (ob::GoalRegion is a base class: the name needs qualifying)
   Bounds velocity_bounds_;
   mutable ::ompl::RNG rng_;
 };
@@ -278,7 +278,7 @@ struct OmplProblem {
 // planner's: same grid, same footprint, same margin; it must outlive the problem).
 template <VehicleModel V>
 OmplProblem make_problem(const V& vehicle, const CollisionChecker& checker,
-                         const typename V::State& start, const GoalRegion& goal,
+                         const typename V::State& start, const Goal& goal,
                          const ProblemSettings& settings) {
   OmplProblem p;
   p.counters = std::make_shared<WorkCounters>();

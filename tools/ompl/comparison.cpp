@@ -47,7 +47,7 @@ void run_grip(const V& vehicle, const Scene& scene, RunResult& out) {
     return;
   }
   const auto start = vehicle.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad);
-  const GoalRegion goal = tools::scene_goal(scene);
+  const Goal goal = tools::scene_goal(scene);
   if (auto s = planner->set_problem(start, goal); !s) {
     out.error = s.error().message;
     return;
@@ -117,7 +117,7 @@ void run_ompl(const V& vehicle, const Scene& scene, RunResult& out) {
     return;
   }
   const auto start = vehicle.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad);
-  const GoalRegion goal = tools::scene_goal(scene);
+  const Goal goal = tools::scene_goal(scene);
   OmplProblem problem = make_problem(vehicle, *checker, start, goal, settings_for(config));
   if (auto s = set_planner(problem, out.spec.planner); !s) {
     out.error = s.error().message;

@@ -14,7 +14,7 @@
 //    motion between sub-steps, and by validate_state (finite, within the limits). Sub-steps
 //    restart from every dt state, so the check follows the executed trajectory instead of
 //    drifting from it over a long plan (open-loop integration error would grow with time);
-//  - the end within the goal region (GoalRegion::contains, no tolerance).
+//  - the end within the goal region (Goal::contains, no tolerance).
 // The planners check every dt with a dt margin; this sees 10x finer with a 10x smaller margin,
 // so it catches a plan that is free only at its samples, or only thanks to a coarse margin.
 
@@ -61,7 +61,7 @@ Result<CollisionChecker> make_fine_checker(const V& vehicle, const OccupancyGrid
 
 // `claimed`, if not empty, holds the planner's state at the end of each piece (x, y).
 template <VehicleModel V>
-PlanCheck check_plan(const V& vehicle, const CollisionChecker& fine_checker, const GoalRegion& goal,
+PlanCheck check_plan(const V& vehicle, const CollisionChecker& fine_checker, const Goal& goal,
                      const typename V::State& start, const std::vector<PlanPiece>& plan,
                      double step_s, const std::vector<std::array<double, 2>>& claimed = {},
                      std::uint32_t substeps = kRecheckSubsteps) {
@@ -117,7 +117,7 @@ PlanCheck check_plan(const V& vehicle, const CollisionChecker& fine_checker, con
                   std::to_string(state_x(q)) + ", " + std::to_string(state_y(q)) + ")");
     }
   }
-  out.end_goal_distance_m = std::hypot(state_x(q) - goal.x_m, state_y(q) - goal.y_m);
+  out.end_goal_distance_m = std::hypot(state_x(q) - goal.x_m(), state_y(q) - goal.y_m());
   if (!goal.contains(state_x(q), state_y(q))) {
     return fail("the plan ends " + std::to_string(out.end_goal_distance_m) +
                 " m from the goal point, outside the goal radius");

@@ -255,7 +255,7 @@ nlohmann::json fairness_notes(double time_limit_s) {
        "the core CollisionChecker with the planner's margin (half a step's chassis motion), "
        "once per propagation step"},
       {"goal",
-       "the scene's goal disk (reference point within the radius); OMPL: GoalRegion "
+       "the scene's goal disk (reference point within the radius); OMPL: Goal "
        "with distanceGoal = distance to the goal point, threshold = radius, sampleable"},
       {"projection", "(x, y), 1 m cells, the default for KPIECE1, PDST and EST"},
       {"sst",

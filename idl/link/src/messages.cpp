@@ -5,6 +5,9 @@
 #include <cstring>
 
 #include "grip/common/enum_names.hpp"
+#include "grip/vehicles/car.hpp"
+#include "grip/vehicles/dd_acceleration.hpp"
+#include "grip/vehicles/dd_velocity.hpp"
 
 namespace grip::link {
 

@@ -73,7 +73,9 @@ struct Handoffs {
       std::make_unique<SpscRing<MapTile, kTileRing>>();
   std::unique_ptr<TripleBuffer<VehicleSample>> states =
       std::make_unique<TripleBuffer<VehicleSample>>();
-  std::unique_ptr<TripleBuffer<GoalRegion>> goals = std::make_unique<TripleBuffer<GoalRegion>>();
+  // Disk goals only (link::goal_from_wire): a cells Goal views memory of the thread that made
+  // it, so it must not cross to the planning thread.
+  std::unique_ptr<TripleBuffer<Goal>> goals = std::make_unique<TripleBuffer<Goal>>();
   std::unique_ptr<TripleBuffer<PlanSlot>> plans = std::make_unique<TripleBuffer<PlanSlot>>();
   std::unique_ptr<TripleBuffer<CycleStatus>> statuses =
       std::make_unique<TripleBuffer<CycleStatus>>();

@@ -194,7 +194,7 @@ Status PlannerParticipantFor<V>::start_up() {
   const std::int64_t started = platform::now_ns();
   const std::int64_t timeout = config_.startup_timeout.count();
   std::optional<VehicleSample> state;
-  std::optional<GoalRegion> goal;
+  std::optional<Goal> goal;
   std::optional<std::int64_t> synced_at;  // when the map was first in sync
   std::string refusal;
   while (!stop_.load(std::memory_order_acquire)) {

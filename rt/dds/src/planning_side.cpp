@@ -66,13 +66,13 @@ Status PlanningSide<V>::prepare(const VehicleSample& state, bool explore) {
 }
 
 template <VehicleModel V>
-Status PlanningSide<V>::start(const VehicleSample& state, const std::optional<GoalRegion>& goal) {
+Status PlanningSide<V>::start(const VehicleSample& state, const std::optional<Goal>& goal) {
   ReplanningSession<V>& session = *session_;
   exploring_ = !goal;
   // Exploring, the first target is where the vehicle stands; the first cycle picks a frontier.
-  const GoalRegion first = goal ? *goal : GoalRegion{state.state[0], state.state[1], 0.5};
-  heading_x_m_ = first.x_m;
-  heading_y_m_ = first.y_m;
+  const Goal first = goal ? *goal : Goal::disk(state.state[0], state.state[1], 0.5);
+  heading_x_m_ = first.x_m();
+  heading_y_m_ = first.y_m();
   return session.start(state, first);
 }
 
@@ -120,11 +120,11 @@ CycleOutcome PlanningSide<V>::plan_cycle(std::int64_t start_ns, const MapChanges
   ReplanningSession<V>& session = *session_;
   session.note_map_changes(changes);
   if (handoffs_.goals->update()) {
-    const GoalRegion& goal = handoffs_.goals->read_buffer();
+    const Goal& goal = handoffs_.goals->read_buffer();
     session.cycle().set_goal(goal);  // a goal ends exploration
     exploring_ = false;
-    heading_x_m_ = goal.x_m;
-    heading_y_m_ = goal.y_m;
+    heading_x_m_ = goal.x_m();
+    heading_y_m_ = goal.y_m();
   }
   if (exploring_) {
     if (driver_->update(session.cycle(), session.grid(), session.plan_start_ns(), changes.applied,

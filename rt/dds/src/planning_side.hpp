@@ -47,7 +47,7 @@ class PlanningSide {
   bool prepared() const noexcept { return driver_.has_value(); }
   // Start-up: the first tree, toward `goal` or, without one, exploring; again until accepted
   // (the start may not be known free yet).
-  Status start(const VehicleSample& state, const std::optional<GoalRegion>& goal);
+  Status start(const VehicleSample& state, const std::optional<Goal>& goal);
   bool lockstep() const noexcept { return session_->lockstep(); }
   double time_scale() const noexcept { return session_->time_scale(); }
   std::int64_t period_wall_ns() const noexcept { return session_->period_wall_ns(); }

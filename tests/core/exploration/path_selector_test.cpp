@@ -1,5 +1,5 @@
-// Path selection by the visibility/length weight of section 3, on a real planner tree: the
-// selector's choice is the brute-force minimum over every root-to-state trajectory, the
+// Path selection by the visibility/length weight of the paper's Sec. IV, on a real planner tree:
+// the selector's choice is the brute-force minimum over every root-to-state trajectory, the
 // trajectory that sees the frontier beats shorter ones that see nothing, and T is honoured.
 
 #include "grip/exploration/path_selector.hpp"
@@ -60,8 +60,8 @@ class PathSelectorTest : public ::testing::Test {
   void grow(double x, double y, std::uint64_t edges) {
     ASSERT_EQ(frontiers->update(grid, planner->checker().clearance(), x, y),
               ExplorationStatus::kTarget);
-    ASSERT_TRUE(
-        planner->set_problem(robot.rest_state(x, y, 0.0), GoalCells{frontiers->approach_cells()}));
+    ASSERT_TRUE(planner->set_problem(robot.rest_state(x, y, 0.0),
+                                     Goal::cells(frontiers->approach_cells())));
     (void)planner->solve([&] { return planner->stats().edges_added >= edges; });
     selector->set_target(grid, frontiers->target_cells());
   }
@@ -219,7 +219,7 @@ TEST_F(PathSelectorTest, WhenNoTrajectoryGetsCloserToTheTargetThereIsNoChoice) {
   int cy = 0;
   ASSERT_TRUE(grid.to_cell(1.0, 1.0, cx, cy));
   const std::uint32_t here[] = {grid.index(cx, cy)};
-  ASSERT_TRUE(planner->set_problem(robot.rest_state(1.0, 1.0, 0.0), GoalCells{here}));
+  ASSERT_TRUE(planner->set_problem(robot.rest_state(1.0, 1.0, 0.0), Goal::cells(here)));
   (void)planner->solve([&] { return planner->stats().edges_added >= 4; });
   selector->set_target(grid, frontiers->target_cells());
   ASSERT_FALSE(tree_sees_target());
@@ -258,8 +258,8 @@ TEST(PathSelectorFromAfar, SeeingAFewFrontierCellsStillMovesTowardThem) {
   auto selector = PathSelector::create(160, 30, 0.1, pc.max_edges, config).value();
   ASSERT_EQ(frontiers.update(grid, planner.checker().clearance(), 1.0, 1.5),
             ExplorationStatus::kTarget);
-  ASSERT_TRUE(
-      planner.set_problem(robot.rest_state(1.0, 1.5, 0.0), GoalCells{frontiers.approach_cells()}));
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(1.0, 1.5, 0.0),
+                                  Goal::cells(frontiers.approach_cells())));
   selector.set_target(grid, frontiers.target_cells());
   // Grow until the first tree state sees a target cell.
   PathChoice choice;

@@ -23,7 +23,7 @@ class BuiltInSceneSolveTest : public ::testing::TestWithParam<std::tuple<SceneId
     config.max_trajectories = 100'001;
     auto planner = Planner<V>::create(vehicle, scene.grid, config).value();
     const auto start = vehicle.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad);
-    const GoalRegion goal{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m};
+    const Goal goal = Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m);
     ASSERT_TRUE(planner.set_problem(start, goal));
     const auto result = planner.solve([&] { return planner.stats().edges_added >= 100'000; });
     ASSERT_EQ(result.reason, StopReason::kGoalReached)

@@ -41,7 +41,7 @@ class GoalCellsTest : public ::testing::Test {
 };
 
 TEST_F(GoalCellsTest, RhoIsTheDistanceToTheCellsAndTheSolutionEndsInOne) {
-  ASSERT_TRUE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), GoalCells{cells}));
+  ASSERT_TRUE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), Goal::cells(cells)));
   EXPECT_EQ(planner->rho_field().distance_m(9.45, 1.95), 0.0);
   // From the start the way leads around the wall's top end (y = 8): far more than 7.5 m.
   EXPECT_GT(planner->rho_field().distance_m(2.0, 2.0), 12.0);
@@ -54,24 +54,24 @@ TEST_F(GoalCellsTest, RhoIsTheDistanceToTheCellsAndTheSolutionEndsInOne) {
 
 TEST_F(GoalCellsTest, ACellOutsideTheGridOrASetWithoutFreeCellIsRefused) {
   const std::vector<std::uint32_t> outside{grid.cell_count()};
-  const auto refused = planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), GoalCells{outside});
+  const auto refused = planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), Goal::cells(outside));
   ASSERT_FALSE(refused.ok());
   EXPECT_NE(refused.error().message.find("outside the grid"), std::string::npos);
   const std::vector<std::uint32_t> in_wall{grid.index(60, 20), grid.index(0, 0)};
-  EXPECT_FALSE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), GoalCells{in_wall}).ok());
+  EXPECT_FALSE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), Goal::cells(in_wall)).ok());
 
   // Refused in replanning, the current goal stays.
-  ASSERT_TRUE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), GoalCells{cells}));
-  EXPECT_EQ(planner->retain(planner->root_state(), GoalCells{in_wall}, 1.0),
+  ASSERT_TRUE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), Goal::cells(cells)));
+  EXPECT_EQ(planner->retain(planner->root_state(), Goal::cells(in_wall), 1.0),
             RetainStatus::kGoalWithoutFreeCell);
-  EXPECT_EQ(planner->retain(planner->root_state(), GoalCells{outside}, 1.0),
+  EXPECT_EQ(planner->retain(planner->root_state(), Goal::cells(outside), 1.0),
             RetainStatus::kGoalOutsideGrid);
   EXPECT_EQ(planner->rho_field().distance_m(9.45, 1.95), 0.0);
 }
 
 TEST_F(GoalCellsTest, ADiskGoalAfterACellGoalIsADiskAgain) {
-  ASSERT_TRUE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), GoalCells{cells}));
-  const GoalRegion disk{2.0, 10.0, 0.5};
+  ASSERT_TRUE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), Goal::cells(cells)));
+  const Goal disk = Goal::disk(2.0, 10.0, 0.5);
   ASSERT_TRUE(planner->set_problem(robot.rest_state(2.0, 2.0, 0.0), disk));
   EXPECT_EQ(planner->rho_field().distance_m(2.05, 10.05), 0.0);
   EXPECT_GT(planner->rho_field().distance_m(9.45, 1.95), 0.0);

@@ -37,7 +37,7 @@ class GripBookkeepingTest : public ::testing::Test {
     config.seed = 11;
     config.stop_at_goal = false;  // keep iterating once the goal is reached
     planner.emplace(Planner<DdAcceleration>::create(robot, grid, config).value());
-    ASSERT_TRUE(planner->set_problem(robot.rest_state(2, 2, 0), GoalRegion{10, 10, 0.8}));
+    ASSERT_TRUE(planner->set_problem(robot.rest_state(2, 2, 0), Goal::disk(10, 10, 0.8)));
   }
   void iterate_once() {
     StopAfterIterations stop{&planner->stats(), planner->stats().iterations + 1};
@@ -145,7 +145,7 @@ class EndToEndSolveTest : public ::testing::TestWithParam<SolveCase> {
     config.max_edges = 60'000;
     config.max_trajectories = 30'000;
     auto planner = Planner<V>::create(vehicle, grid, config).value();
-    const GoalRegion goal{9.5, 2.0, 1.0};
+    const Goal goal = Goal::disk(9.5, 2.0, 1.0);
     ASSERT_TRUE(planner.set_problem(vehicle.rest_state(2.0, 2.0, 0.0), goal));
     const auto result = planner.solve([] { return false; });
     ASSERT_EQ(result.status, SolveStatus::kExactSolution) << stop_reason_name(result.reason);
@@ -185,7 +185,7 @@ TEST(RandomSelection, GrowsATreeOfDistinctEdgesWithoutReachingAFarGoalQuickly) {
   config.max_edges = 4000;
   config.max_trajectories = 2000;
   auto planner = Planner<DdAcceleration>::create(robot, grid, config).value();
-  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), GoalRegion{9.5, 2.0, 1.0}));
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), Goal::disk(9.5, 2.0, 1.0)));
   StopAfterEdges stop{&planner.stats(), 500};
   (void)planner.solve(stop);
   EXPECT_EQ(planner.stats().edges_added, 500U);
@@ -199,7 +199,7 @@ TEST(PoolExhaustion, StopsGrowingSaysSoAndStillReturnsItsBestAnswer) {
   config.max_edges = 41;
   config.max_trajectories = 20;
   auto planner = Planner<Car>::create(robot, grid, config).value();
-  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), GoalRegion{9.5, 2.0, 1.0}));
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), Goal::disk(9.5, 2.0, 1.0)));
   const auto result = planner.solve([] { return false; });
   EXPECT_EQ(result.reason, StopReason::kPoolExhausted);
   EXPECT_EQ(result.status, SolveStatus::kApproximateSolution);
@@ -241,7 +241,7 @@ TEST(Determinism, TheSameSeedReproducesTheRunAndAnotherSeedDoesNot) {
     PlannerConfig config;
     config.seed = seed;
     auto planner = Planner<DdAcceleration>::create(robot, grid, config).value();
-    EXPECT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), GoalRegion{9.5, 2.0, 1.0}));
+    EXPECT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), Goal::disk(9.5, 2.0, 1.0)));
     (void)planner.solve([] { return false; });
     return std::make_pair(planner.stats().edges_added, planner.stats().collision_checks);
   };
@@ -291,13 +291,13 @@ TEST(BadInput, StartInAnObstacleGoalOutsideTheGridAndNanStatesAreRefused) {
   grid.fill_rect(2.0, 2.0, 3.0, 3.0, Cell::kObstacle);
   const auto robot = Car::create({}).value();
   auto planner = Planner<Car>::create(robot, grid, PlannerConfig{}).value();
-  const GoalRegion goal{4.5, 4.5, 0.5};
+  const Goal goal = Goal::disk(4.5, 4.5, 0.5);
 
   auto in_obstacle = planner.set_problem(robot.rest_state(2.5, 2.5, 0), goal);
   ASSERT_FALSE(in_obstacle);
   EXPECT_NE(in_obstacle.error().message.find("obstacle"), std::string::npos);
 
-  auto outside = planner.set_problem(robot.rest_state(1, 1, 0), GoalRegion{40, 4, 0.5});
+  auto outside = planner.set_problem(robot.rest_state(1, 1, 0), Goal::disk(40, 4, 0.5));
   ASSERT_FALSE(outside);
   EXPECT_NE(outside.error().message.find("outside the grid"), std::string::npos);
 
@@ -305,10 +305,10 @@ TEST(BadInput, StartInAnObstacleGoalOutsideTheGridAndNanStatesAreRefused) {
   ASSERT_FALSE(nan_start);
   EXPECT_NE(nan_start.error().message.find("not finite"), std::string::npos);
 
-  auto bad_radius = planner.set_problem(robot.rest_state(1, 1, 0), GoalRegion{4.5, 4.5, -1});
+  auto bad_radius = planner.set_problem(robot.rest_state(1, 1, 0), Goal::disk(4.5, 4.5, -1));
   EXPECT_FALSE(bad_radius);
 
-  auto goal_in_wall = planner.set_problem(robot.rest_state(1, 1, 0), GoalRegion{2.5, 2.5, 0.3});
+  auto goal_in_wall = planner.set_problem(robot.rest_state(1, 1, 0), Goal::disk(2.5, 2.5, 0.3));
   ASSERT_FALSE(goal_in_wall);
   EXPECT_NE(goal_in_wall.error().message.find("no free cell"), std::string::npos);
 
@@ -328,7 +328,7 @@ TEST(ExtractPlan, RefusesABufferTooSmallForThePlanAndLeavesItEmpty) {
   const OccupancyGrid grid = test::room_with_wall();
   const auto robot = DdAcceleration::create({}).value();
   auto planner = Planner<DdAcceleration>::create(robot, grid, PlannerConfig{}).value();
-  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), GoalRegion{9.5, 2.0, 1.0}));
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), Goal::disk(9.5, 2.0, 1.0)));
   (void)planner.solve([] { return false; });
   ASSERT_TRUE(planner.solved());
   BoundedVector<PlanStep> roomy(4096);

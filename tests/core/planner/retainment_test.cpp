@@ -24,7 +24,7 @@ class RetainmentTest : public ::testing::Test {
   DdAcceleration robot = DdAcceleration::create({.velocity_target_share = 0.0}).value();
   PlannerConfig config;
   std::optional<Planner<DdAcceleration>> planner;
-  GoalRegion goal{11.5, 11.5, 1.0};
+  Goal goal = Goal::disk(11.5, 11.5, 1.0);
 
   void SetUp() override {
     config.steps_per_record = 1;  // the replanning configuration
@@ -171,7 +171,7 @@ TEST_F(RetainmentTest, OnceAPathReachesTheGoalOnlyPathsToTheGoalAreKept) {
 
 TEST_F(RetainmentTest, PrioritiesAreResetByEq2AndScoresUseTheNewTarget) {
   grow(800);
-  const GoalRegion new_goal{2.0, 11.5, 1.0};
+  const Goal new_goal = Goal::disk(2.0, 11.5, 1.0);
   ASSERT_EQ(planner->retain(planner->root_state(), new_goal, 100.0), RetainStatus::kOk);
   const auto& tree = planner->tree();
   const EdgeHandle root = tree.root();
@@ -213,7 +213,7 @@ TEST_F(RetainmentTest, RestartingInTheSameStateDrawsNewSamplesAndKeepsRhoOnReque
   EXPECT_NE(first_control(), before);
   EXPECT_EQ(planner->stats().edges_added, edges + 1);
   // kKeep leaves rho toward the old goal; kRecompute turns it toward the new one.
-  const GoalRegion other{2.0, 11.5, 1.0};
+  const Goal other = Goal::disk(2.0, 11.5, 1.0);
   const double rho_here = planner->rho_field().distance_m(2.0, 11.5);
   ASSERT_EQ(planner->restart(start, other, 1.0, RhoUpdate::kKeep), RetainStatus::kOk);
   EXPECT_DOUBLE_EQ(planner->rho_field().distance_m(2.0, 11.5), rho_here);
@@ -236,12 +236,12 @@ TEST_F(RetainmentTest, AGoalAdoptedWithItsRhoPlansAsOneWhoseRhoThePlannerCompute
   const ClearanceMap clearance = ClearanceMap::create_for(grid).value();
   field.compute(grid, clearance, cells, config.rho_clearance_m);
   Planner<DdAcceleration> computed = Planner<DdAcceleration>::create(robot, grid, config).value();
-  ASSERT_TRUE(computed.set_problem(robot.rest_state(2, 2, 0.7), GoalCells{cells}));
+  ASSERT_TRUE(computed.set_problem(robot.rest_state(2, 2, 0.7), Goal::cells(cells)));
 
   // WHEN the planner adopts it with the cells and retains without recomputing
-  ASSERT_EQ(planner->adopt_goal(GoalCells{cells}, field), RetainStatus::kOk);
+  ASSERT_EQ(planner->adopt_goal(Goal::cells(cells), field), RetainStatus::kOk);
   ASSERT_EQ(
-      planner->retain(planner->root_state(), GoalCells{cells}, 1.0, nullptr, RhoUpdate::kKeep),
+      planner->retain(planner->root_state(), Goal::cells(cells), 1.0, nullptr, RhoUpdate::kKeep),
       RetainStatus::kOk);
 
   // THEN its rho is the one a planner computes itself toward those cells
@@ -263,19 +263,24 @@ TEST_F(RetainmentTest, AGoalAdoptedWithItsRhoPlansAsOneWhoseRhoThePlannerCompute
   ASSERT_TRUE(grid.to_cell(root[0], root[1], rx, ry));
   const std::uint32_t here[] = {grid.index(rx, ry)};
   field.compute(grid, clearance, here, config.rho_clearance_m);
-  ASSERT_EQ(planner->adopt_goal(GoalCells{here}, field), RetainStatus::kOk);
-  ASSERT_EQ(planner->retain(planner->root_state(), GoalCells{here}, 1.0, nullptr, RhoUpdate::kKeep),
-            RetainStatus::kOk);
+  ASSERT_EQ(planner->adopt_goal(Goal::cells(here), field), RetainStatus::kOk);
+  ASSERT_EQ(
+      planner->retain(planner->root_state(), Goal::cells(here), 1.0, nullptr, RhoUpdate::kKeep),
+      RetainStatus::kOk);
   EXPECT_TRUE(planner->solved());
 
   // AND a goal without a free cell is refused, leaving F and rho as they were
   const double rho_before = planner->rho_field().distance_m(5.0, 5.0);
   grid.set(3, 3, Cell::kObstacle);
   const std::uint32_t blocked[] = {grid.index(3, 3)};
-  EXPECT_EQ(planner->adopt_goal(GoalCells{blocked}, field), RetainStatus::kGoalWithoutFreeCell);
+  EXPECT_EQ(planner->adopt_goal(Goal::cells(blocked), field), RetainStatus::kGoalWithoutFreeCell);
   EXPECT_DOUBLE_EQ(planner->rho_field().distance_m(5.0, 5.0), rho_before);
-  ASSERT_EQ(planner->retain(planner->root_state(), GoalCells{here}, 1.0, nullptr, RhoUpdate::kKeep),
-            RetainStatus::kOk);
+  // AND so is a disk: rho toward a disk is the planner's own to compute
+  EXPECT_EQ(planner->adopt_goal(Goal::disk(5.0, 5.0, 1.0), field), RetainStatus::kGoalNotCells);
+  EXPECT_DOUBLE_EQ(planner->rho_field().distance_m(5.0, 5.0), rho_before);
+  ASSERT_EQ(
+      planner->retain(planner->root_state(), Goal::cells(here), 1.0, nullptr, RhoUpdate::kKeep),
+      RetainStatus::kOk);
   EXPECT_TRUE(planner->solved());
 }
 
@@ -318,7 +323,7 @@ TEST_F(RetainmentTest, RefusedRetainmentsLeaveTheTreeAsItWas) {
   EXPECT_EQ(planner->retain(TreeState{planner->tree().root(), 0}, goal, 1.0),
             planner->tree().edge(planner->tree().root()).last == 0 ? RetainStatus::kOk
                                                                    : RetainStatus::kRootNotInTree);
-  EXPECT_EQ(planner->retain(planner->root_state(), GoalRegion{40, 4, 1}, 1.0),
+  EXPECT_EQ(planner->retain(planner->root_state(), Goal::disk(40, 4, 1), 1.0),
             RetainStatus::kGoalOutsideGrid);
   const TreeState root = planner->root_state();
   const auto& q = planner->tree().edge_state(root.edge, root.index);
@@ -335,7 +340,7 @@ TEST(RetainmentSelection, BaselinesDoNotRetain) {
   config.selection = Selection::kRrt;
   config.steps_per_record = 1;
   auto planner = Planner<DdVelocity>::create(robot, grid, config).value();
-  const GoalRegion goal{6, 6, 0.5};
+  const Goal goal = Goal::disk(6, 6, 0.5);
   ASSERT_TRUE(planner.set_problem(robot.rest_state(2, 2, 0), goal));
   EXPECT_EQ(planner.retain(planner.root_state(), goal, 1.0), RetainStatus::kUnsupportedSelection);
 }

@@ -57,7 +57,7 @@ class HorizonSafetyTest : public ::testing::Test {
     config.seed = 2;
     auto planner = Planner<DdAcceleration>::create(robot, grid, config).value();
     // The goal is a free cell in the corner that no chassis can reach: the tree keeps growing.
-    EXPECT_TRUE(planner.set_problem(robot.rest_state(1.0, 1.0, 0.8), GoalRegion{0.35, 4.65, 0.08}));
+    EXPECT_TRUE(planner.set_problem(robot.rest_state(1.0, 1.0, 0.8), Goal::disk(0.35, 4.65, 0.08)));
     (void)planner.solve([&] { return planner.stats().edges_added >= 5000; });
 
     const auto& tree = planner.tree();
@@ -106,7 +106,7 @@ TEST(AllLeavesSafety, EveryLeafOfTheTreeCanBrakeToAStop) {
   config.safety = SafetyCheck::kAllLeaves;
   config.seed = 9;
   auto planner = Planner<Car>::create(car, grid, config).value();
-  ASSERT_TRUE(planner.set_problem(car.rest_state(1.0, 1.0, 0.8), GoalRegion{0.35, 6.65, 0.08}));
+  ASSERT_TRUE(planner.set_problem(car.rest_state(1.0, 1.0, 0.8), Goal::disk(0.35, 6.65, 0.08)));
   (void)planner.solve([&] { return planner.stats().edges_added >= 800; });
   std::size_t leaves = 0;
   planner.visit_edges([&](EdgeHandle, const Edge& edge) {

@@ -34,7 +34,7 @@ inline OccupancyGrid room_with_wall() {
 // must be collision-free and the last state must lie in the goal region.
 template <VehicleModel V>
 void expect_solution_replays_into_goal(const Planner<V>& planner, const typename V::State& start,
-                                       const GoalRegion& goal) {
+                                       const Goal& goal) {
   ASSERT_TRUE(planner.solved());
   BoundedVector<PlanStep> plan(4096);
   ASSERT_TRUE(planner.extract_plan(planner.best_state(), plan));

@@ -10,6 +10,8 @@
 #include <limits>
 #include <vector>
 
+#include "grip/vehicles/car.hpp"
+
 namespace grip::link {
 namespace {
 

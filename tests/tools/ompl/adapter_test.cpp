@@ -1,6 +1,6 @@
 // The OMPL adapter: OMPL's own sanity checks on the state space, propagation through OMPL equal
 // to the core's propagation of the same control (exactly), the validity checker and the goal
-// answering as the planner's checker and GoalRegion do, controls within the model's limits and,
+// answering as the planner's checker and Goal do, controls within the model's limits and,
 // given the state, aimed at a velocity as the planner's are.
 
 #include "adapter.hpp"
@@ -25,13 +25,13 @@ struct Problem {
   V vehicle;
   std::unique_ptr<Scene> scene;
   std::optional<Planner<V>> planner;
-  GoalRegion goal;
+  Goal goal;
   OmplProblem ompl;
 
   explicit Problem(const V& v)
       : vehicle(v), scene(std::make_unique<Scene>(make_scene(SceneId::kRooms).value())) {
     planner.emplace(Planner<V>::create(vehicle, scene->grid, PlannerConfig{}).value());
-    goal = GoalRegion{scene->goal_x_m, scene->goal_y_m, scene->goal_radius_m};
+    goal = Goal::disk(scene->goal_x_m, scene->goal_y_m, scene->goal_radius_m);
     const auto start =
         vehicle.rest_state(scene->start_x_m, scene->start_y_m, scene->start_theta_rad);
     ompl = make_problem(vehicle, planner->checker(), start, goal, settings_for(planner->config()));
@@ -177,8 +177,8 @@ TYPED_TEST(OmplAdapter, TheGoalIsTheScenesGoalRegion) {
   Random rng(5);
   int inside = 0;
   for (int i = 0; i < 2000; ++i) {
-    const double x = p.goal.x_m + rng.uniform(-2.0, 2.0);
-    const double y = p.goal.y_m + rng.uniform(-2.0, 2.0);
+    const double x = p.goal.x_m() + rng.uniform(-2.0, 2.0);
+    const double y = p.goal.y_m() + rng.uniform(-2.0, 2.0);
     to_ompl<TypeParam>(p.vehicle.rest_state(x, y, 0.0), s);
     EXPECT_EQ(goal.isSatisfied(s), p.goal.contains(x, y)) << x << ", " << y;
     inside += p.goal.contains(x, y) ? 1 : 0;

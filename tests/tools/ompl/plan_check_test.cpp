@@ -19,7 +19,7 @@ class PlanCheckTest : public ::testing::Test {
       : vehicle_(DdVelocity::create(DdVelocityParams{}).value()),
         scene_(std::make_unique<Scene>(make_scene(SceneId::kRooms).value())),
         fine_(make_fine_checker(vehicle_, scene_->grid, kDt).value()),
-        goal_{scene_->goal_x_m, scene_->goal_y_m, scene_->goal_radius_m},
+        goal_(Goal::disk(scene_->goal_x_m, scene_->goal_y_m, scene_->goal_radius_m)),
         start_(vehicle_.rest_state(scene_->start_x_m, scene_->start_y_m, scene_->start_theta_rad)) {
   }
 
@@ -51,7 +51,7 @@ class PlanCheckTest : public ::testing::Test {
   DdVelocity vehicle_;
   std::unique_ptr<Scene> scene_;
   CollisionChecker fine_;
-  GoalRegion goal_;
+  Goal goal_;
   DdVelocity::State start_;
 };
 
@@ -63,8 +63,9 @@ TEST_F(PlanCheckTest, APlannersSolutionPassesWithItsStatesAndLength) {
   EXPECT_TRUE(c.ok) << c.failure;
   EXPECT_GT(c.duration_s, 0.0);
   // At least the straight line from the start to the goal disk.
-  EXPECT_GT(c.length_m, std::hypot(goal_.x_m - start_[0], goal_.y_m - start_[1]) - goal_.radius_m);
-  EXPECT_LE(c.end_goal_distance_m, goal_.radius_m);
+  EXPECT_GT(c.length_m,
+            std::hypot(goal_.x_m() - start_[0], goal_.y_m() - start_[1]) - goal_.radius_m());
+  EXPECT_LE(c.end_goal_distance_m, goal_.radius_m());
   EXPECT_LT(c.max_fine_deviation_m, 1e-3);
 }
 

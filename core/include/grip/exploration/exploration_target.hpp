@@ -1,5 +1,5 @@
 #pragma once
-// The exploration target of GRIP.md section 3, chosen again and again as the map grows: the
+// The exploration target of the paper's Sec. IV, chosen again and again as the map grows: the
 // frontier group to head for (FrontierMap: close by rho_A*, small groups first), the cells it is
 // approached from (the planner's target set F) and its own cells (the c of the path selector's
 // weight), and when to set a group aside because the vehicle gets no closer to it.
@@ -15,9 +15,9 @@
 // retarget_m), progress, or a changed map restart that clock: a vehicle that still senses new
 // cells is not stuck, and in a small space successive targets lie within a few metres of each
 // other. Once only given-up groups are left they are all taken back, retry_rounds times: a
-// vehicle often got no closer because its planner found no plan for a while (a real-time run
-// through a period of stalls), not because the group is out of its reach; a car at a time scale
-// of 10 ended `stuck` at 0.98 having given up corners it could reach.
+// vehicle often gets no closer because its planner found no plan for a while (a real-time run
+// through a period of stalls), not because the group is out of its reach; without the retries
+// a fast vehicle ends `stuck` having given up corners it could reach.
 //
 // Memory is reserved by create(); copy_map() and choose() never allocate and never throw.
 

@@ -1,5 +1,5 @@
 #pragma once
-// Frontier-based targets for mapping an unknown workspace (GRIP.md section 3): frontier cells
+// Frontier-based targets for mapping an unknown workspace (the paper's Sec. IV): frontier cells
 // on the three-valued map, grouped by flood fill, each group's rho_A* distance from the robot,
 // and the choice of the target group: close by rho_A* and small first.
 //
@@ -122,10 +122,10 @@ class FrontierMap {
   std::span<const std::uint32_t> group_cells(std::uint32_t group) const noexcept;
   // The chosen group (an index into groups()), kNoGroup unless status() is kTarget.
   std::uint32_t target() const noexcept { return target_; }
-  // The target group's cells (empty without a target): the cells c of section 3's d(tr).
+  // The target group's cells (empty without a target): the cells c of Sec. IV's d(tr).
   std::span<const std::uint32_t> target_cells() const noexcept;
   // The cells from which the target group is approached (each once; empty without a
-  // target): the planner's target set F, Planner::retain(root, GoalCells{approach_cells()}, T).
+  // target): the planner's target set F, Planner::retain(root, Goal::cells(approach_cells()), T).
   std::span<const std::uint32_t> approach_cells() const noexcept { return approach_.span(); }
   // The robot's wavefront of the last update (rho_A* from the robot, in the chassis' space).
   const DistanceField& robot_field() const noexcept { return field_; }

@@ -1,5 +1,5 @@
 #pragma once
-// Path selection for exploration (GRIP.md section 3): every root-to-state trajectory tr of the
+// Path selection for exploration (the paper's Sec. IV): every root-to-state trajectory tr of the
 // planner's tree is a candidate; with d_max the sensing radius and c the target cells,
 //   d(tr, c) = rho_A*(q, c) for the state q of tr nearest to c among those that see c, else
 //              d_max + rho_A*(end of tr, F)
@@ -14,10 +14,9 @@
 // rho_A* to its target set F (in exploration, the target group's approach cells,
 // exploration/frontier.hpp, within approach range of the frontier), and only trajectories that
 // end closer to F than the root are candidates. Without that rule a car facing a dead end, whose
-// way out begins by backing away from F, chose the shortest trajectory of at least T cycle
-// after cycle: it crept, every re-rooting threw away the tree's attempts at a way out, and it
-// stayed for hundreds of seconds (3 of 30 lockstep car runs ended below 0.97 coverage). With it
-// there is no choice, the vehicle stops, and the tree, kept at the resting root
+// way out begins by backing away from F, would choose the shortest trajectory of at least T
+// cycle after cycle: it creeps, and every re-rooting throws away the tree's attempts at a way
+// out. With it there is no choice, the vehicle stops, and the tree, kept at the resting root
 // (ReplanningCycle), grows on until it holds a way out.
 //
 // The bounded approximation, and why:
@@ -39,10 +38,9 @@
 //    minimum), so each sampled state costs O(1) when it sees nothing and O(targets) when it
 //    does. The pass runs when the plan is chosen rather than while the tree grows: the planner
 //    splits, re-roots and prunes edges, and values kept in step with that would have to live
-//    inside it. The pass is linear in the sampled states; measured 3.6 to 4.7 ms for trees of
-//    8,300 to 8,700 edges (about 80,000 recorded states, sampled every 0.2 s) near a 32-cell
-//    target on a loaded 2-core VM. It runs after growth, so the cycle's safety margin (or an
-//    earlier stop of growth) must cover it.
+//    inside it. The pass is linear in the sampled states, a few milliseconds for a tree of
+//    thousands of edges; it runs after growth, so the cycle's safety margin (or an earlier stop
+//    of growth) must cover it.
 //
 // Memory is reserved by create() (a 32-bit mask per grid cell, targets x floats per edge);
 // set_target() and select() never allocate and never throw.

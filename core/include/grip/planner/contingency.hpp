@@ -1,5 +1,5 @@
 #pragma once
-// The braking contingency maneuver of section 2.3, checked against the known-free map.
+// The braking contingency maneuver of the paper's Sec. III-C, checked against the known-free map.
 // A state is unsafe iff its contingency collides (Eq. 4 with one braking maneuver per model).
 
 #include <cmath>

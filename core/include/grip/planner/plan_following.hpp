@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "grip/planner/planner.hpp"
+#include "grip/vehicles/vehicle.hpp"
 
 namespace grip {
 

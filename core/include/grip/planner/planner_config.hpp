@@ -18,7 +18,7 @@ enum class Selection {
   kRrtBias,  // RRT-EXTEND-BIAS: as kRrt, with the goal as the attractor a fraction of the time
 };
 
-// Where braking contingencies are checked (section 2.3).
+// Where braking contingencies are checked (the paper's Sec. III-C).
 enum class SafetyCheck {
   kAtHorizon,  // only states reached at time T from the root (the paper's theorem)
   kAllLeaves,  // every new leaf must be safe (the Fig. 7 comparison)
@@ -43,7 +43,7 @@ struct PlannerConfig {
   double integration_step_s = 0.05;
   std::uint32_t steps_per_record = 2;
 
-  // Random plans: one control held for a duration uniform in [min, max] (section 2.2 step 3).
+  // Random plans: one control held for a duration uniform in [min, max] (Sec. III-B).
   double min_plan_duration_s = 1.0;
   double max_plan_duration_s = 4.0;
   // New edges shorter than this (t_free below the threshold) are discarded.

@@ -1,7 +1,7 @@
 #pragma once
-// The planner's tree (section 2): edges are trajectory segments, not points. A propagation
-// produces one trajectory (its control and the states recorded along it); splitting an edge
-// at a state makes two edges that share that trajectory, so no state is copied.
+// The planner's tree (the paper's Sec. III): edges are trajectory segments, not points. A
+// propagation produces one trajectory (its control and the states recorded along it); splitting an
+// edge at a state makes two edges that share that trajectory, so no state is copied.
 //
 // All storage is reserved at construction; operations never allocate. Handles are 32-bit pool
 // indices. The tree is generic over the state type only.

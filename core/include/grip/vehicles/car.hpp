@@ -1,6 +1,6 @@
 #pragma once
 // Car-like vehicle, forward and reverse, with acceleration and steering-velocity control
-// (GRIP.md section 4, vehicle 3). Reference point: the rear axle centre.
+// (the paper's Sec. V, vehicle 3). Reference point: the rear axle centre.
 //
 // State (x [m], y [m], theta [rad], v [m/s], delta [rad]); control (a [m/s^2], delta' [rad/s]):
 //   x' = v cos(theta) cos(delta)   y' = v sin(theta) cos(delta)   theta' = v sin(delta) / L

@@ -1,5 +1,5 @@
 #pragma once
-// Differential-drive robot with acceleration control (GRIP.md section 4, vehicle 2).
+// Differential-drive robot with acceleration control (the paper's Sec. V, vehicle 2).
 //
 // State (x [m], y [m], theta [rad], v_left [m/s], v_right [m/s]); control (a_left, a_right)
 // [m/s^2]. The wheel rim speeds saturate at +-max_wheel_speed and their difference at the

@@ -1,5 +1,5 @@
 #pragma once
-// Differential-drive robot with velocity control (GRIP.md section 4, vehicle 1).
+// Differential-drive robot with velocity control (the paper's Sec. V, vehicle 1).
 //
 // State (x [m], y [m], theta [rad]); control (v_left, v_right): wheel rim speeds [m/s] (the
 // paper's R * V_L, R * V_R, so the wheel radius is folded into the control). Kinematics:

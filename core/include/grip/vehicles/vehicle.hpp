@@ -1,10 +1,10 @@
 #pragma once
-// What the planner needs from a vehicle model (GRIP.md section 4), as a C++20 concept.
+// What the planner needs from a vehicle model (the paper's Sec. V), as a C++20 concept.
 //
 // Every model integrates its dynamics with a fixed step: the bounded velocity components
 // (wheel speeds, forward speed, steering angle) are linear in time and held at their limits
 // the way a motor controller would hold them, so they are integrated exactly; the pose uses
-// the midpoint rule on them. Each model provides its braking contingency (section 2.3).
+// the midpoint rule on them. Each model provides its braking contingency (Sec. III-C).
 // The planner and the simulator use the same model, never a second copy.
 
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// Chassis collision checking against the three-valued grid (GRIP.md sections 1 and 3).
+// Chassis collision checking against the three-valued grid (the paper's Sec. II and IV).
 //
 // A state (x, y, theta) is free iff every grid cell that the chassis rectangle, grown by
 // margin_m on all sides, intersects is kFree and inside the grid. Cells and rectangle are

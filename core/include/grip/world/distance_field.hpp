@@ -1,5 +1,5 @@
 #pragma once
-// The holonomic distance field behind the planner's metric rho_A* (GRIP.md section 2.2): one
+// The holonomic distance field behind the planner's metric rho_A* (the paper's Sec. III-B): one
 // Dijkstra wavefront from a target set over the grid, then O(1) lookups of the shortest
 // 8-connected path length from any cell to the nearest target.
 //

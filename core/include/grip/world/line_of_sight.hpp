@@ -1,7 +1,7 @@
 #pragma once
 // Line of sight on an occupancy grid: exact traversal of the cells a segment crosses
 // (Amanatides & Woo, "A Fast Voxel Traversal Algorithm", 1987), used by the simulator's range
-// sensor against the ground truth and by the planner's visibility weight (GRIP.md section 3)
+// sensor against the ground truth and by the planner's visibility weight (the paper's Sec. IV)
 // against the known map.
 //
 // Which cells a segment visits: every cell whose interior the segment passes through, in order

@@ -1,5 +1,5 @@
 #pragma once
-// The planner's map: a 2-D occupancy grid with the paper's three values (GRIP.md section 3).
+// The planner's map: a 2-D occupancy grid with the paper's three values (Sec. IV).
 // A state collides when its chassis touches an obstacle cell, an unknown cell, or the outside of
 // the grid: only known-free space is free.
 //

@@ -23,6 +23,10 @@
 #include <vector>
 
 #include "grip/planner/plan_following.hpp"
+#include "grip/planner/plan_step.hpp"
+#include "grip/vehicles/car.hpp"
+#include "grip/vehicles/dd_acceleration.hpp"
+#include "grip/vehicles/dd_velocity.hpp"
 
 namespace grip::rt {
 

@@ -112,23 +112,16 @@ class ReplanningCycle {
                                         PlannerConfig planner_config, const CycleConfig& config);
 
   // Start-up: the vehicle at rest at q0 (or moving: any valid state) and the first target.
-  Status start(const State& q0, const GoalRegion& goal);
-  // The target of the next cycles (a frontier, a goal).
-  void set_goal(const GoalRegion& goal) noexcept {
-    goal_ = goal;
-    goal_is_cells_ = false;
-    goal_changed_ = true;
-    rho_adopted_ = false;
-  }
-  // The same as a set of cells (exploration: a frontier group's approach cells), copied; cells
-  // beyond the grid's cell count are dropped.
-  void set_goal(GoalCells goal) noexcept;
-  // The same with rho toward it computed elsewhere (Planner::adopt_goal; `rho` receives the
+  Status start(const State& q0, const Goal& goal);
+  // The target of the next cycles (a frontier, a goal). A cells goal (exploration: a frontier
+  // group's approach cells) is copied; cells beyond the grid's cell count are dropped. With
+  // `rho`, rho toward the cells computed elsewhere (Planner::adopt_goal; `rho` receives the
   // previous field): the cycles that follow keep it rather than run the wavefront themselves,
-  // and rho_refresh_cycles counts from here. Should the planner refuse it, the next cycle
-  // computes rho toward `goal` itself.
-  void set_goal(GoalCells goal, DistanceField& rho) noexcept;
-  const GoalRegion& goal() const noexcept { return goal_; }
+  // and rho_refresh_cycles counts from here. Should the planner refuse it (a disk, or cells it
+  // refuses), the next cycle computes rho toward `goal` itself.
+  void set_goal(const Goal& goal, DistanceField* rho = nullptr) noexcept;
+  // The current target; a cells goal views this cycle's copy, valid until the next set_goal().
+  const Goal& goal() const noexcept { return goal_; }
 
   // Where cells became non-free since the last cycle (map updates): the next retainment checks
   // only states within the chassis' reach of it. Without any note, a changed grid is checked
@@ -195,11 +188,10 @@ class ReplanningCycle {
   Planner<V> planner_;
   CycleConfig config_;
   std::uint32_t cycle_steps_;
-  GoalRegion goal_;
+  Goal goal_;  // a cells goal views goal_cells_
   BoundedVector<std::uint32_t> goal_cells_;
-  bool goal_is_cells_ = false;  // the target is goal_cells_, not goal_
-  bool goal_changed_ = true;    // since the last retainment or restart
-  bool rho_adopted_ = false;    // rho toward the goal came with it (set_goal with a field)
+  bool goal_changed_ = true;  // since the last retainment or restart
+  bool rho_adopted_ = false;  // rho toward the goal came with it (set_goal with a field)
   std::uint32_t cycles_since_rho_ = 0;
   TreeState committed_;             // end of the committed plan in the tree; empty: braking
   bool full_without_plan_ = false;  // the last cycle reached the tree's capacity, no plan

@@ -80,7 +80,7 @@ class ReplanningSession {
   bool has_cycle() const noexcept { return cycle_.has_value(); }
   // Start-up: the first tree at the measured state toward `goal`; refused, for example, while
   // the start is not known free. The state is the last measured one from now on.
-  Status start(const VehicleSample& state, const GoalRegion& goal);
+  Status start(const VehicleSample& state, const Goal& goal);
 
   // A measured state (each cycle that has a new one, before the plan's start is set).
   void note_state(const VehicleSample& state) noexcept;

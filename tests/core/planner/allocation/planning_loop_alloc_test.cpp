@@ -34,7 +34,7 @@ class PlanningLoopAllocationTest : public ::testing::Test {
     auto planner = Planner<V>::create(vehicle, scene.grid, config).value();
     EXPECT_TRUE(planner.set_problem(
         vehicle.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad),
-        GoalRegion{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m}));
+        Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m)));
     BoundedVector<PlanStep> plan(4096);
     const PlannerStats& stats = planner.stats();
 
@@ -103,8 +103,8 @@ TEST(ReplanningAllocation, RetainmentWithANewMapAndTargetAllocatesNothing) {
   config.max_edges = 8000;
   config.max_trajectories = 4000;
   auto planner = Planner<Car>::create(car, scene.grid, config).value();
-  const GoalRegion goals[2] = {{scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m},
-                               {15.0, 5.0, 1.0}};
+  const Goal goals[2] = {Goal::disk(scene.goal_x_m, scene.goal_y_m, scene.goal_radius_m),
+                         Goal::disk(15.0, 5.0, 1.0)};
   ASSERT_TRUE(planner.set_problem(
       car.rest_state(scene.start_x_m, scene.start_y_m, scene.start_theta_rad), goals[0]));
   const PlannerStats& stats = planner.stats();

@@ -8,8 +8,9 @@
 #include <string_view>
 
 #include "goal.h"
-#include "grip/planner/planner.hpp"
+#include "grip/planner/goal.hpp"
 #include "grip/vehicles/vehicle.hpp"
+#include "grip/world/occupancy_grid.hpp"
 #include "map_update.h"
 #include "plan.h"
 #include "vehicle_state.h"
@@ -85,8 +86,8 @@ Verdict check_map_update(const grip_msg_MapUpdate& msg, const MapGeometry* expec
 
 // A goal: finite, radius > 0, centre inside `grid`.
 Verdict check_goal(const grip_msg_Goal& msg, const OccupancyGrid& grid) noexcept;
-inline GoalRegion goal_from_wire(const grip_msg_Goal& msg) noexcept {
-  return GoalRegion{msg.x_m, msg.y_m, msg.radius_m};
+inline Goal goal_from_wire(const grip_msg_Goal& msg) noexcept {
+  return Goal::disk(msg.x_m, msg.y_m, msg.radius_m);
 }
 
 // A plan, for the vehicle controller: the kind it drives, finite controls, durations > 0 and
