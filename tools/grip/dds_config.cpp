@@ -19,4 +19,11 @@ Result<std::string> choose_dds_config(const std::string& dds_config_option) {
   return std::string();
 }
 
+Result<platform::dds::Participant> join_domain(std::uint32_t domain,
+                                               const std::string& dds_config_option) {
+  const Result<std::string> config = choose_dds_config(dds_config_option);
+  if (!config) return config.error();
+  return platform::dds::Participant::create(domain, *config);
+}
+
 }  // namespace grip::tools

@@ -7,11 +7,17 @@
 #include <string>
 
 #include "grip/common/result.hpp"
+#include "grip/platform/dds/participant.hpp"
 
 namespace grip::tools {
 
 // For Participant::create: a file:// URI, the environment's value, or empty (the built-in
 // loopback configuration). Refuses a --dds-config file that cannot be read, naming it.
 Result<std::string> choose_dds_config(const std::string& dds_config_option);
+
+// A participant of an operator tool (`grip echo`, `grip goal`) on `domain`, with the
+// configuration chosen above; a bad option is an ErrorCode::kInvalidArgument.
+Result<platform::dds::Participant> join_domain(std::uint32_t domain,
+                                               const std::string& dds_config_option);
 
 }  // namespace grip::tools

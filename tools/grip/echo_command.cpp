@@ -81,15 +81,10 @@ int echo(const EchoOptions& o, const pdds::Participant& participant,
 }
 
 int run_echo(const EchoOptions& o) {
-  const Result<std::string> config = choose_dds_config(o.dds_config);
-  if (!config) {
-    std::cerr << "grip echo: " << config.error().message << "\n";
-    return 2;
-  }
-  auto participant = pdds::Participant::create(o.domain, *config);
+  auto participant = join_domain(o.domain, o.dds_config);
   if (!participant) {
     std::cerr << "grip echo: " << participant.error().message << "\n";
-    return 1;
+    return participant.error().code == ErrorCode::kInvalidArgument ? 2 : 1;
   }
   std::signal(SIGINT, stop_echo);
   std::signal(SIGTERM, stop_echo);

@@ -68,15 +68,10 @@ int run_goal(const GoalOptions& o) {
     std::cerr << "grip goal: X and Y must be finite numbers\n";
     return 2;
   }
-  const Result<std::string> config = choose_dds_config(o.dds_config);
-  if (!config) {
-    std::cerr << "grip goal: " << config.error().message << "\n";
-    return 2;
-  }
-  auto participant = pdds::Participant::create(o.domain, *config);
+  auto participant = join_domain(o.domain, o.dds_config);
   if (!participant) {
     std::cerr << "grip goal: " << participant.error().message << "\n";
-    return 1;
+    return participant.error().code == ErrorCode::kInvalidArgument ? 2 : 1;
   }
   link::LinkTiming timing;
   timing.liveliness_lease = std::chrono::microseconds(std::llround(o.lease_ms * 1000.0));
