@@ -1,6 +1,7 @@
 # What `cmake --install` puts where (GNU directories), and the Debian packages CPack makes of it:
 #   runtime     (package grip):     bin/grip, its private library in lib/grip, the man page,
-#                                   share/grip/{idl,dds}: the contract and the loopback config;
+#                                   share/grip/{idl,dds}: the contract and the loopback config,
+#                                   the grip-planner systemd unit and its options' example;
 #   development (package grip-dev): the planner core (grip::core, grip::base), its headers and
 #                                   the CMake package, for a vehicle team that embeds the planner
 #                                   in its own process: find_package(grip) and link grip::core.
@@ -13,6 +14,11 @@ install(FILES ${GRIP_IDL_FILES} ${PROJECT_SOURCE_DIR}/idl/README.md
         DESTINATION ${CMAKE_INSTALL_DATADIR}/grip/idl COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/platform/dds/config/loopback.xml
         DESTINATION ${CMAKE_INSTALL_DATADIR}/grip/dds COMPONENT runtime)
+# The unit names /usr/bin/grip: the Debian package's prefix.
+install(FILES ${PROJECT_SOURCE_DIR}/platform/systemd/grip-planner.service
+        DESTINATION lib/systemd/system COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/platform/systemd/grip-planner.env
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/grip/systemd COMPONENT runtime)
 
 # The man page, from `grip --help` and every subcommand's (help2man, Debian's). A sanitized
 # build does not make one: it is never installed.

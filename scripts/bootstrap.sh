@@ -15,6 +15,7 @@ packages=(
   libyaml-cpp-dev        # ROS map_server map metadata (sim/, `--map FILE.yaml`)
   cyclonedds-dev cyclonedds-tools  # DDS: libddsc, idlc and the CMake package
   stress-ng              # the load of `grip stress --load` (a built-in load is the fallback)
+  libsystemd-dev         # sd_notify: readiness and watchdog of the grip-planner service
   util-linux             # setpriv: the scheduling tests drop capabilities with it
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev  # optional: `grip bench ompl` (OMPL 1.5 links against these Boost libraries)
 )

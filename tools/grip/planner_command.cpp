@@ -1,10 +1,13 @@
 // `grip planner`: the planner as a DDS participant, as it runs on a vehicle computer. It waits
 // for the map, the vehicle's state and a goal, then replans every cycle on a deadline-scheduled
 // thread and publishes plans and its status (rt/dds/planner_participant.hpp). Ctrl-C stops it.
+// Under systemd (platform/systemd/grip-planner.service) it says when it is ready, feeds the
+// watchdog while planning cycles complete, and logs with timestamps for the journal.
 
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <fstream>
 #include <iostream>
@@ -17,7 +20,9 @@
 #include "cycle_trace.hpp"
 #include "dds_config.hpp"
 #include "grip/platform/overrun_watcher.hpp"
+#include "grip/platform/service_notifier.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
+#include "grip/tools/log.hpp"
 #include "latency_json.hpp"
 #include "report_file.hpp"
 
@@ -41,7 +46,11 @@ struct PlannerOptions {
   std::uint64_t seed = 1;
   std::string report;
   std::string cycle_trace;
+  std::string log_level = "info";
 };
+
+// The status line goes to the service manager and, without a terminal, to the log this often.
+constexpr std::chrono::seconds kStatusEvery{10};
 
 std::atomic<rt::dds::PlannerParticipant*> g_running{nullptr};
 
@@ -85,27 +94,76 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o) {
   return config;
 }
 
+// The service manager's side of a run (a no-op outside a service): a failed notification is
+// logged once, and the run goes on.
+class Service {
+ public:
+  explicit Service(const Logger& log)
+      : log_(log), notifier_(platform::ServiceNotifier::from_environment()) {}
+  const platform::ServiceNotifier& notifier() const { return notifier_; }
+  void check(const Status& sent) {
+    if (!sent.ok() && !warned_) {
+      warned_ = true;
+      log_.warning("service manager notification failed: " + sent.error().message);
+    }
+  }
+
+ private:
+  const Logger& log_;
+  platform::ServiceNotifier notifier_;
+  bool warned_ = false;
+};
+
+// Readiness, watchdog, status and warnings: from run()'s thread and the receive thread, never
+// from the planning thread.
+void wire_service(rt::dds::PlannerParticipantConfig& config, const Logger& log, Service& service) {
+  config.on_ready = [&log, &service](const std::string& summary) {
+    log.info("ready: " + summary);
+    service.check(service.notifier().ready(summary));
+  };
+  if (service.notifier().watchdog_timeout().count() > 0) {
+    config.alive_interval = service.notifier().watchdog_timeout() / 2;
+    config.on_alive = [&service] { service.check(service.notifier().watchdog()); };
+  }
+  config.on_warning = [&log](const std::string& line) { log.warning(line); };
+  const bool tty = isatty(STDERR_FILENO) == 1;
+  config.on_progress = [tty, &log, &service, next = std::chrono::steady_clock::time_point{}](
+                           const std::string& line) mutable {
+    if (tty) std::cerr << "\r" << line << "    " << std::flush;
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next) return;
+    next = now + kStatusEvery;
+    if (!tty) log.info(line);
+    service.check(service.notifier().status(line));
+  };
+}
+
 int run_planner(const PlannerOptions& o) {
+  auto level = parse_log_level(o.log_level);
+  if (!level) {
+    std::cerr << "grip planner: " << level.error().message << "\n";
+    return 2;
+  }
+  const Logger log("grip planner", *level);
   auto config = to_config(o);
   if (!config) {
-    std::cerr << "grip planner: " << config.error().message << "\n";
+    log.error(config.error().message);
     return 2;
   }
   // Before any thread, Cyclone's included: every thread must block SIGXCPU (overrun_watcher.hpp).
   auto overruns = platform::OverrunWatcher::start();
   if (!overruns) {
-    std::cerr << "grip planner: " << overruns.error().message << "\n";
+    log.error(overruns.error().message);
     return 2;
   }
   const bool tty = isatty(STDERR_FILENO) == 1;
-  config->on_progress = [tty](const std::string& line) {
-    if (tty) std::cerr << "\r" << line << "    " << std::flush;
-  };
+  Service service(log);
+  wire_service(*config, log, service);
   std::optional<CycleTrace> trace;
   if (!o.cycle_trace.empty()) {
     auto opened = CycleTrace::open(o.cycle_trace);
     if (!opened) {
-      std::cerr << "grip planner: " << opened.error().message << "\n";
+      log.error(opened.error().message);
       return 2;
     }
     trace.emplace(std::move(opened).value());
@@ -113,25 +171,27 @@ int run_planner(const PlannerOptions& o) {
   }
   auto planner = rt::dds::PlannerParticipant::create(*config);
   if (!planner) {
-    std::cerr << "grip planner: " << planner.error().message << "\n";
+    log.error(planner.error().message);
     return 2;
   }
   g_running.store(planner->get());
   std::signal(SIGINT, stop_on_signal);
   std::signal(SIGTERM, stop_on_signal);
-  std::cerr << "grip planner: " << o.robot << " on DDS domain " << o.domain << " ("
-            << (config->dds_config.empty() ? "loopback-only configuration" : config->dds_config)
-            << "); waiting for map, vehicle state and goal\n";
+  log.info(o.robot + " on DDS domain " + std::to_string(o.domain) + " (" +
+           (config->dds_config.empty() ? "loopback-only configuration" : config->dds_config) +
+           "); waiting for map, vehicle state and goal");
+  service.check(service.notifier().status("waiting for map, vehicle state and goal"));
   auto report = (*planner)->run();
+  service.check(service.notifier().stopping());
   g_running.store(nullptr);
   if (tty) std::cerr << "\n";
   if (!report) {
-    std::cerr << "grip planner: " << report.error().message << "\n";
+    log.error(report.error().message);
     return 1;
   }
   if (trace) {
     if (Status s = trace->close(); !s) {
-      std::cerr << "grip planner: " << s.error().message << "\n";
+      log.error(s.error().message);
       return 1;
     }
   }
@@ -221,6 +281,11 @@ void register_planner_command(CLI::App& app) {
   cmd->add_option("--report", o->report, "Write a JSON report here");
   cmd->add_option("--cycle-trace", o->cycle_trace,
                   "Write every planning cycle's timing and outcome here (CSV)");
+  cmd->add_option("--log-level", o->log_level,
+                  "error, warning or info: what goes to stderr, each line with its UTC time "
+                  "(without a terminal the status line too, every 10 s)")
+      ->check(CLI::IsMember({"error", "warning", "info"}))
+      ->capture_default_str();
   cmd->callback([o]() {
     const int rc = run_planner(*o);
     if (rc != 0) throw CLI::RuntimeError(rc);

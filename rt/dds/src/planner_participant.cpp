@@ -16,6 +16,7 @@
 #include "grip/platform/dds/writer.hpp"
 #include "grip/platform/thread.hpp"
 #include "grip/platform/wakeup.hpp"
+#include "grip/rt/liveness_beat.hpp"
 #include "grip/rt/periodic_loop.hpp"
 #include "grip/vehicles/default_vehicle.hpp"
 #include "handoff.hpp"
@@ -125,11 +126,12 @@ class PlannerParticipantFor final : public PlannerParticipant {
         dds_(std::move(entities)),
         wakeups_(std::move(wakeups)),
         receive_(vehicle, {dds_.states, dds_.maps, dds_.goals, dds_.requests, dds_.waitset},
-                 handoffs_, wakeups_.lockstep_inputs, config.max_map_cells),
+                 handoffs_, wakeups_.lockstep_inputs, config.max_map_cells, config.on_warning),
         publish_(V::kKind, {dds_.plans, dds_.status}, handoffs_, wakeups_.publish,
                  receive_.counters(), receive_.clock()),
         planning_(config, vehicle, handoffs_, wakeups_.publish, wakeups_.target_wanted,
-                  receive_.clock()) {}
+                  receive_.clock()),
+        alive_(config.on_alive ? config.alive_interval.count() : 0) {}
   ~PlannerParticipantFor() override;
 
   // Service threads start now: before any SCHED_DEADLINE thread, which could not create them.
@@ -144,6 +146,10 @@ class PlannerParticipantFor final : public PlannerParticipant {
   void target_main();
   PlannerParticipantReport final_report(PlannerParticipantReport report);
   std::string progress_line(const PlannerParticipantReport& report) const;
+  // Run loops: tells the watchdog planning is alive when cycles completed (liveness_beat.hpp).
+  void beat(std::uint64_t cycles) {
+    if (alive_.due(platform::now_ns(), cycles)) config_.on_alive();
+  }
 
   PlannerParticipantConfig config_;
   Entities dds_;
@@ -154,6 +160,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   PublishSide publish_;
   PlanningSide<V> planning_;
   VehicleSample first_state_;  // the state start-up planned from
+  LivenessBeat alive_;
   std::thread receive_thread_;
   std::thread publish_thread_;
   std::thread target_thread_;
@@ -240,6 +247,10 @@ Status PlannerParticipantFor<V>::start_up() {
 template <VehicleModel V>
 Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
   if (Status s = start_up(); !s) return s.error();
+  if (config_.on_ready) {
+    config_.on_ready(std::string("planning (") + (planning_.lockstep() ? "lockstep" : "real time") +
+                     "): map in sync, vehicle state received");
+  }
   return planning_.lockstep() ? run_lockstep() : run_real_time();
 }
 
@@ -280,6 +291,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_real_time() {
       if (config_.on_cycle) config_.on_cycle(record);
     }
     if (done) break;
+    beat(report.cycles);
     if (config_.on_progress && platform::now_ns() >= next_progress) {
       next_progress += 250'000'000;
       config_.on_progress(progress_line(report));
@@ -309,6 +321,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
   bool have_state = true;
   std::int64_t next_progress = platform::now_ns();
   while (!stop_.load(std::memory_order_acquire) && platform::now_ns() < run_until) {
+    beat(report.cycles);  // no state from the vehicle, no cycle, no beat
     if (!have_state) {
       if (!handoffs_.states->update()) {
         static_cast<void>(wakeups_.lockstep_inputs.wait(std::chrono::milliseconds(50)));

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdio>
 #include <iterator>
+#include <string>
+#include <utility>
 
 #include "grip/platform/clock.hpp"
 
@@ -22,11 +24,13 @@ link::Verdict check_sample_freshness(const dds_sample_info_t& info) {
 
 template <VehicleModel V>
 ReceiveSide<V>::ReceiveSide(const V& vehicle, ReceiveEntities entities, Handoffs& handoffs,
-                            platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells)
+                            platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells,
+                            std::function<void(const std::string&)> warn)
     : vehicle_(vehicle),
       dds_(entities),
       handoffs_(handoffs),
       lockstep_inputs_(lockstep_inputs),
+      warn_(std::move(warn)),
       receiver_(max_map_cells) {}
 
 template <VehicleModel V>
@@ -122,9 +126,8 @@ void ReceiveSide<V>::take_maps(pdds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer
       }
       if (applied.gap) {
         counters_.map_gaps.fetch_add(1, std::memory_order_relaxed);
-        std::fprintf(stderr,
-                     "grip planner: map update gap before sequence %llu; requesting a snapshot\n",
-                     static_cast<unsigned long long>(buffer[i].sequence_number));
+        warn("map update gap before sequence " + std::to_string(buffer[i].sequence_number) +
+             "; requesting a snapshot");
       }
       if (applied.healed) counters_.map_heals.fetch_add(1, std::memory_order_relaxed);
       mark_dirty(applied.changed);
@@ -209,9 +212,7 @@ void ReceiveSide<V>::check_liveliness(bool stopping) {
   // Once planning has been told to stop, the vehicle leaving is the end of the run, not a loss.
   if (was_alive_ && !alive && !stopping) {
     counters_.vehicle_losses.fetch_add(1, std::memory_order_relaxed);
-    std::fprintf(stderr,
-                 "grip planner: vehicle controller lost (liveliness); planning goes on with the "
-                 "last map and state\n");
+    warn("vehicle controller lost (liveliness); planning goes on with the last map and state");
   }
   was_alive_ = alive;
   counters_.vehicle_alive.store(alive, std::memory_order_relaxed);
@@ -224,16 +225,23 @@ void ReceiveSide<V>::rejected(const char* topic, const link::Verdict& verdict,
     ++log_suppressed_;
     return;
   }
-  const std::string_view reason = link::rejection_name(verdict.reason);
-  std::fprintf(stderr, "grip planner: rejected %s: %.*s (%s)", topic,
-               static_cast<int>(reason.size()), reason.data(), verdict.field);
+  std::string line = std::string("rejected ") + topic + ": " +
+                     std::string(link::rejection_name(verdict.reason)) + " (" + verdict.field + ")";
   if (log_suppressed_ > 0) {
-    std::fprintf(stderr, "; %llu more rejected in the last second",
-                 static_cast<unsigned long long>(log_suppressed_));
+    line += "; " + std::to_string(log_suppressed_) + " more rejected in the last second";
   }
-  std::fprintf(stderr, "\n");
+  warn(line);
   log_suppressed_ = 0;
   last_log_ns_ = now_ns;
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::warn(const std::string& line) const {
+  if (warn_) {
+    warn_(line);
+  } else {
+    std::fprintf(stderr, "grip planner: %s\n", line.c_str());
+  }
 }
 
 template class ReceiveSide<DdVelocity>;

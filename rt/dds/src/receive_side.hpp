@@ -7,8 +7,10 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "goal.h"
@@ -48,8 +50,10 @@ struct ReceiveEntities {
 template <VehicleModel V>
 class ReceiveSide {
  public:
+  // `warn` takes each warning line (no trailing newline); unset, they go to stderr.
   ReceiveSide(const V& vehicle, ReceiveEntities entities, Handoffs& handoffs,
-              platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells);
+              platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells,
+              std::function<void(const std::string&)> warn);
 
   // The receive thread's body: until `stop_threads`. `stopping` (planning was told to stop)
   // makes a vehicle that leaves the end of the run rather than a loss.
@@ -70,11 +74,13 @@ class ReceiveSide {
   void hand_over_tiles();
   void check_liveliness(bool stopping);
   void rejected(const char* topic, const link::Verdict& verdict, std::int64_t now_ns);
+  void warn(const std::string& line) const;
 
   V vehicle_;
   ReceiveEntities dds_;
   Handoffs& handoffs_;
   platform::Wakeup& lockstep_inputs_;  // lockstep: a state or map tiles were handed over
+  std::function<void(const std::string&)> warn_;
   link::MapReceiver receiver_;
   std::vector<CellBox> dirty_;  // per tile
   int tiles_x_ = 0;

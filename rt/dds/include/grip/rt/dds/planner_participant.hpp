@@ -79,6 +79,17 @@ struct PlannerParticipantConfig {
   // Called from run()'s thread with every cycle's record, soon after the cycle (a cycle trace).
   // In lockstep there is no release or deadline: the record's release is the cycle's start.
   std::function<void(const CycleRecord&)> on_cycle;
+  // Called once from run()'s thread when start-up succeeded, with a one-line summary (a
+  // service's readiness).
+  std::function<void(const std::string&)> on_ready;
+  // Called from run()'s thread at most every `alive_interval` (zero: never), and only when
+  // cycles completed since the last call (rt/liveness_beat.hpp): a service's watchdog, which a
+  // stalled planning loop stops feeding. Never from the planning thread.
+  std::chrono::nanoseconds alive_interval{0};
+  std::function<void()> on_alive;
+  // Warnings (rejected samples, map gaps, a lost vehicle), one line each without a trailing
+  // newline, from the receive thread. Unset: printed to stderr.
+  std::function<void(const std::string&)> on_warning;
 };
 
 struct PlannerParticipantReport {
