@@ -4,6 +4,8 @@
 // CYCLONEDDS_URI of the environment, as Cyclone users expect, else the project's loopback-only
 // configuration. `grip explore`, `grip sim` and the benchmarks always stay on loopback.
 
+#include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 
 #include "grip/common/result.hpp"
@@ -14,6 +16,9 @@ namespace grip::tools {
 // For Participant::create: a file:// URI, the environment's value, or empty (the built-in
 // loopback configuration). Refuses a --dds-config file that cannot be read, naming it.
 Result<std::string> choose_dds_config(const std::string& dds_config_option);
+
+// The --domain and --dds-config options of a command on a real link.
+void add_link_options(CLI::App& command, std::uint32_t& domain, std::string& dds_config_option);
 
 // A participant of an operator tool (`grip echo`, `grip goal`) on `domain`, with the
 // configuration chosen above; a bad option is an ErrorCode::kInvalidArgument.

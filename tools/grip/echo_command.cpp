@@ -124,12 +124,7 @@ void register_echo_command(CLI::App& app) {
       ->required()
       ->check(CLI::IsMember({link::kVehicleStateTopic, link::kPlanTopic, link::kMapUpdateTopic,
                              link::kMapRequestTopic, link::kGoalTopic, link::kPlannerStatusTopic}));
-  cmd->add_option("--domain", o->domain, "DDS domain id")
-      ->check(CLI::Range(0U, static_cast<std::uint32_t>(DDS_DOMAIN_DEFAULT) - 1U))
-      ->capture_default_str();
-  cmd->add_option("--dds-config", o->dds_config,
-                  "Cyclone DDS XML configuration file (default: $CYCLONEDDS_URI, else the "
-                  "built-in loopback-only one)");
+  add_link_options(*cmd, o->domain, o->dds_config);
   cmd->add_option("--count", o->count, "Exit after this many samples (0: no limit)")
       ->capture_default_str();
   cmd->add_option("--timeout", o->timeout_s,

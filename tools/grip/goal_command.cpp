@@ -125,12 +125,7 @@ void register_goal_command(CLI::App& app) {
   cmd->add_option("--radius", o->radius_m, "Goal region radius [m]")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--domain", o->domain, "DDS domain id")
-      ->check(CLI::Range(0U, static_cast<std::uint32_t>(DDS_DOMAIN_DEFAULT) - 1U))
-      ->capture_default_str();
-  cmd->add_option("--dds-config", o->dds_config,
-                  "Cyclone DDS XML configuration file (default: $CYCLONEDDS_URI, else the "
-                  "built-in loopback-only one)");
+  add_link_options(*cmd, o->domain, o->dds_config);
   cmd->add_option("--lease-ms", o->lease_ms,
                   "Liveliness lease [ms]: at most the planner's --lease-ms")
       ->check(CLI::Range(10.0, 3'600'000.0))

@@ -32,7 +32,7 @@ namespace {
 
 struct PlannerOptions {
   std::string robot = "car";
-  unsigned domain = 0;
+  std::uint32_t domain = 0;
   std::string dds_config;
   double period_ms = 50.0;
   double budget_ms = 25.0;
@@ -67,9 +67,6 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o) {
   auto policy = platform::parse_policy_request(o.policy);
   if (!policy) return policy.error();
   config.policy = *policy;
-  if (o.domain >= DDS_DOMAIN_DEFAULT) {
-    return invalid_argument("--domain must be below " + std::to_string(DDS_DOMAIN_DEFAULT));
-  }
   config.domain = o.domain;
   Result<std::string> dds_config = choose_dds_config(o.dds_config);
   if (!dds_config) return dds_config.error();
@@ -254,10 +251,7 @@ void register_planner_command(CLI::App& app) {
       "Run the planner as a DDS participant (vehicle computer): state, map and goal in, "
       "plans and status out");
   cmd->add_option("--robot", o->robot, "dd-vel, dd-accel or car")->capture_default_str();
-  cmd->add_option("--domain", o->domain, "DDS domain id")->capture_default_str();
-  cmd->add_option("--dds-config", o->dds_config,
-                  "Cyclone DDS XML configuration file (default: $CYCLONEDDS_URI, else the built-in "
-                  "loopback-only one)");
+  add_link_options(*cmd, o->domain, o->dds_config);
   cmd->add_option("--period-ms", o->period_ms, "Cycle T in vehicle time [ms]")
       ->capture_default_str();
   cmd->add_option("--budget-ms", o->budget_ms, "Planning time per cycle in vehicle time [ms]")
