@@ -51,6 +51,12 @@ TEST(BenchExploreCommand, BadOptionsAreRefusedNamingWhatIsWrong) {
   r = grip::testing::run_grip("bench explore --map /nonexistent/grip.map --scenes ''");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("/nonexistent/grip.map"), std::string::npos) << r.output;
+  // One domain per job, and Cyclone's ports end at domain 232.
+  r = grip::testing::run_grip("bench explore --domain 200 --jobs 40");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--domain 200 with --jobs 40 would use domains above 232"),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace

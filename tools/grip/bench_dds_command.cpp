@@ -37,6 +37,7 @@
 
 #include "child.hpp"
 #include "commands.hpp"
+#include "dds_config.hpp"
 #include "grip/link/vehicle_link.hpp"
 #include "grip/platform/clock.hpp"
 #include "grip/platform/dds/participant.hpp"
@@ -458,6 +459,7 @@ void register_bench_dds_command(CLI::App& bench) {
       ->capture_default_str()
       ->check(CLI::Range(1U, 100U));
   cmd->add_option("--domain", o->domain, "DDS domain of the planner run (ddsperf uses the next)")
+      ->check(CLI::Range(0U, kMaxDomainId - 1))
       ->capture_default_str();
   cmd->add_option("--json", o->json, "Write the figures as JSON here");
   cmd->add_option("--planner-report", o->planner_report,

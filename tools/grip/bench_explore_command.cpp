@@ -22,6 +22,7 @@
 
 #include "child.hpp"
 #include "commands.hpp"
+#include "dds_config.hpp"
 #include "report_file.hpp"
 #include "stats.hpp"
 
@@ -207,6 +208,11 @@ void print_table(const BenchExploreOptions& o, const std::vector<Row>& rows) {
 }
 
 int run_bench(const BenchExploreOptions& o) {
+  if (o.domain + std::max(1U, o.jobs) - 1 > kMaxDomainId) {
+    std::cerr << "grip bench explore: --domain " << o.domain << " with --jobs " << o.jobs
+              << " would use domains above " << kMaxDomainId << "\n";
+    return 2;
+  }
   auto self = self_executable();
   if (!self) {
     std::cerr << "grip bench explore: " << self.error().message << "\n";
@@ -361,7 +367,7 @@ void register_bench_explore_command(CLI::App& bench) {
       ->check(CLI::Range(1U, 64U))
       ->capture_default_str();
   cmd->add_option("--domain", o->domain, "First DDS domain id (one per job)")
-      ->check(CLI::Range(0U, 200U))
+      ->check(CLI::Range(0U, kMaxDomainId))
       ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Directory for every run's report and log")
       ->capture_default_str();

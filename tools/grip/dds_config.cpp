@@ -20,9 +20,8 @@ Result<std::string> choose_dds_config(const std::string& dds_config_option) {
 }
 
 void add_link_options(CLI::App& command, std::uint32_t& domain, std::string& dds_config_option) {
-  // The RTPS port mapping (7400 + 250 x domain + ...) leaves UDP ports for domains 0 to 232.
   command.add_option("--domain", domain, "DDS domain id")
-      ->check(CLI::Range(0U, 232U))
+      ->check(CLI::Range(0U, kMaxDomainId))
       ->capture_default_str();
   command.add_option("--dds-config", dds_config_option,
                      "Cyclone DDS XML configuration file (default: $CYCLONEDDS_URI, else the "

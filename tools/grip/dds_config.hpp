@@ -17,6 +17,10 @@ namespace grip::tools {
 // loopback configuration). Refuses a --dds-config file that cannot be read, naming it.
 Result<std::string> choose_dds_config(const std::string& dds_config_option);
 
+// The largest DDS domain id: the RTPS port mapping (7400 + 250 x domain + ...) leaves UDP ports
+// for domains 0 to 232.
+inline constexpr std::uint32_t kMaxDomainId = 232;
+
 // The --domain and --dds-config options of a command on a real link.
 void add_link_options(CLI::App& command, std::uint32_t& domain, std::string& dds_config_option);
 

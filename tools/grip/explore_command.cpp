@@ -22,6 +22,7 @@
 
 #include "commands.hpp"
 #include "cycle_trace.hpp"
+#include "dds_config.hpp"
 #include "grip/planner/step_margin.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
@@ -265,7 +266,6 @@ Status validate(const ExploreOptions& o) {
                             ")");
   }
   if (!(o.max_sim_time_s > 0.0)) return invalid_argument("--max-sim-time must be > 0");
-  if (o.domain >= DDS_DOMAIN_DEFAULT) return invalid_argument("--domain out of range");
   return Ok{};
 }
 
@@ -388,7 +388,9 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
                   "came too late; drawn from --seed)")
       ->check(CLI::Range(0.0, 0.5))
       ->capture_default_str();
-  cmd->add_option("--domain", o.domain, "DDS domain id")->capture_default_str();
+  cmd->add_option("--domain", o.domain, "DDS domain id")
+      ->check(CLI::Range(0U, kMaxDomainId))
+      ->capture_default_str();
   cmd->add_option("--report", o.report, "Write the JSON report here");
   cmd->add_option("--image", o.image, "Draw the run into this PNG");
 }
