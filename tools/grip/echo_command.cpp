@@ -2,9 +2,7 @@
 // what `ros2 topic echo` is to ROS users. It only listens: its reader asks for no deadline and
 // accepts any liveliness lease, so it matches every writer of the topic and disturbs none.
 
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -16,6 +14,7 @@
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/waitset.hpp"
 #include "message_json.hpp"
+#include "stop_signal.hpp"
 
 namespace grip::tools {
 
@@ -31,9 +30,6 @@ struct EchoOptions {
   std::uint64_t count = 0;  // 0: until Ctrl-C or the timeout
   double timeout_s = 0.0;   // 0: no timeout
 };
-
-std::atomic<bool> g_stop{false};
-extern "C" void stop_echo(int) { g_stop.store(true); }
 
 // The topic's own QoS (history, durability), without a deadline and with a lease no writer
 // exceeds, so that the request is compatible with whatever a writer offers.
@@ -57,7 +53,7 @@ int echo(const EchoOptions& o, const pdds::Participant& participant,
       steady_clock::now() + std::chrono::duration_cast<steady_clock::duration>(
                                 std::chrono::duration<double>(o.timeout_s));
   std::uint64_t printed = 0;
-  while (!g_stop.load() && (o.count == 0 || printed < o.count)) {
+  while (!stop_flag().load() && (o.count == 0 || printed < o.count)) {
     if (o.timeout_s > 0.0 && steady_clock::now() >= end) {
       std::cerr << "grip echo: " << printed << " samples of " << topic << " in " << o.timeout_s
                 << " s\n";
@@ -86,8 +82,7 @@ int run_echo(const EchoOptions& o) {
     std::cerr << "grip echo: " << participant.error().message << "\n";
     return participant.error().code == ErrorCode::kInvalidArgument ? 2 : 1;
   }
-  std::signal(SIGINT, stop_echo);
-  std::signal(SIGTERM, stop_echo);
+  stop_on_signals();
   const link::LinkTiming timing;
   const std::string& t = o.topic;
   if (t == link::kVehicleStateTopic) {

@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <csignal>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -34,6 +33,7 @@
 #include "render.hpp"
 #include "report_file.hpp"
 #include "speed_profile.hpp"
+#include "stop_signal.hpp"
 
 namespace grip::tools {
 
@@ -56,10 +56,6 @@ struct ExploreOptions {
   std::string image;
   std::string cycle_trace;  // grip explore: the planner's cycles, as CSV
 };
-
-// Ends the run: a signal, or the planner of grip explore failing on its own.
-std::atomic<bool> g_stop{false};
-extern "C" void stop_exploration(int) { g_stop.store(true); }
 
 struct World {
   std::string name;
@@ -295,8 +291,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     }
     overruns.emplace(std::move(watcher).value());
   }
-  std::signal(SIGINT, stop_exploration);
-  std::signal(SIGTERM, stop_exploration);
+  stop_on_signals();
 
   std::unique_ptr<rt::dds::PlannerParticipant> planner;
   std::thread planner_thread;
@@ -335,7 +330,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
       planner_result = planner->run();
       if (!planner_result->ok() && !sim_finished.load()) {
         planner_failed.store(true);
-        g_stop.store(true);
+        stop_flag().store(true);  // the planner of grip explore failed on its own
       }
     });
   }
@@ -344,7 +339,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     sim_finished.store(true);
     if (planner) planner->request_stop();
   };
-  auto run = sim::run_simulation(config, world->truth, g_stop, progress_line());
+  auto run = sim::run_simulation(config, world->truth, stop_flag(), progress_line());
   if (isatty(STDERR_FILENO) == 1) std::cerr << "\n";
   if (planner) {
     sim_finished.store(true);

@@ -5,10 +5,8 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -22,6 +20,7 @@
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/waitset.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "stop_signal.hpp"
 
 namespace grip::tools {
 
@@ -39,9 +38,6 @@ struct GoalOptions {
   double wait_s = 10.0;
   bool stay = false;
 };
-
-std::atomic<bool> g_stop{false};
-extern "C" void stop_goal(int) { g_stop.store(true); }
 
 // The goal that is still offered on the topic, if any writer offers one: the new goal's
 // sequence number follows it. Discovery on a network takes a moment; a second is allowed.
@@ -106,10 +102,9 @@ int run_goal(const GoalOptions& o) {
   std::cout << "grip goal: goal " << goal.sequence_number << " at (" << o.x_m << ", " << o.y_m
             << ") radius " << o.radius_m << " m delivered on DDS domain " << o.domain << "\n";
   if (o.stay) {
-    std::signal(SIGINT, stop_goal);
-    std::signal(SIGTERM, stop_goal);
+    stop_on_signals();
     std::cout << "grip goal: offering it to planners that start later until Ctrl-C\n" << std::flush;
-    while (!g_stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    while (!stop_flag().load()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   return 0;
 }

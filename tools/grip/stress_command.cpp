@@ -4,7 +4,6 @@
 // changes, through a lock-free hand-off as map updates will arrive) and the target changes. It
 // measures and reports; it does not judge, except with --max-miss-rate for a vehicle image's CI.
 
-#include <sys/utsname.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,6 +25,7 @@
 #include "grip/common/random.hpp"
 #include "grip/platform/alloc_counter.hpp"
 #include "grip/platform/clock.hpp"
+#include "grip/platform/machine.hpp"
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/rt/cycle_sizing.hpp"
 #include "grip/rt/map_changes.hpp"
@@ -84,12 +84,6 @@ Status validate(const StressOptions& o) {
 
 double per(std::uint64_t total, std::uint64_t count) {
   return count > 0 ? static_cast<double>(total) / static_cast<double>(count) : 0.0;
-}
-
-std::string kernel_release() {
-  utsname u{};
-  if (uname(&u) != 0) return "unknown";
-  return std::string(u.sysname) + " " + u.release;
 }
 
 // The environment the planner faces: obstacles appear away from the vehicle and vanish again,
@@ -354,7 +348,8 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   report["heap_allocations_in_loop"] =
       result.allocations_counted ? nlohmann::json(result.heap_allocations_in_loop) : nullptr;
   report["heap_allocations_counted"] = result.allocations_counted;
-  report["kernel"] = kernel_release();
+  const std::string kernel = platform::describe_machine().kernel;
+  report["kernel"] = kernel;
   report["load"] = {{"kind", o.load}, {"description", load.description()}};
   report["records_dropped"] = result.records_dropped;
   report["planner"] = {{"robot", o.robot},
@@ -387,7 +382,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
                       {"integration_step_s", planner_config.integration_step_s}};
 
   std::cout << "grip stress: " << result.cycles << " cycles of " << o.period_ms << " ms (budget "
-            << o.budget_ms << " ms, margin " << margin_ms << " ms) on " << kernel_release() << "\n"
+            << o.budget_ms << " ms, margin " << margin_ms << " ms) on " << kernel << "\n"
             << "  policy " << platform::policy_name(sched.policy)
             << (sched.fallback_reason.empty() ? "" : " (fallback: " + sched.fallback_reason + ")")
             << ", memory "

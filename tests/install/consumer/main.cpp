@@ -22,8 +22,8 @@ int main() {
     std::fprintf(stderr, "planner: %s\n", planner.error().message.c_str());
     return 1;
   }
-  const Status problem = planner->set_problem(vehicle->rest_state(2.0, 2.0, 0.0),
-                                              Goal::disk(10.0, 2.0, 1.0));
+  const Status problem =
+      planner->set_problem(vehicle->rest_state(2.0, 2.0, 0.0), Goal::disk(10.0, 2.0, 1.0));
   if (!problem) {
     std::fprintf(stderr, "problem: %s\n", problem.error().message.c_str());
     return 1;

@@ -1,28 +1,25 @@
 #include "grip/tools/log.hpp"
 
+#include <array>
 #include <chrono>
 #include <ctime>
 
+#include "grip/common/enum_names.hpp"
+
 namespace grip::tools {
 
-std::string_view log_level_name(LogLevel level) noexcept {
-  switch (level) {
-    case LogLevel::kError:
-      return "error";
-    case LogLevel::kWarning:
-      return "warning";
-    case LogLevel::kInfo:
-      return "info";
-  }
-  return "info";
-}
+namespace {
+constexpr std::array<NamedValue<LogLevel>, 3> kLogLevelNames{{
+    {LogLevel::kError, "error"},
+    {LogLevel::kWarning, "warning"},
+    {LogLevel::kInfo, "info"},
+}};
+}  // namespace
+
+std::string_view log_level_name(LogLevel level) noexcept { return name_in(kLogLevelNames, level); }
 
 Result<LogLevel> parse_log_level(std::string_view name) {
-  for (const LogLevel level : {LogLevel::kError, LogLevel::kWarning, LogLevel::kInfo}) {
-    if (name == log_level_name(level)) return level;
-  }
-  return invalid_argument("log level must be error, warning or info (got '" + std::string(name) +
-                          "')");
+  return value_named(kLogLevelNames, name, "log level");
 }
 
 std::string format_log_line(std::int64_t unix_ns, LogLevel level, std::string_view source,
