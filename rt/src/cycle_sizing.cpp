@@ -17,6 +17,7 @@ Result<CycleSizing> size_cycle(const CycleBudget& budget) {
   planner.integration_step_s = integration_step_for_cycle(budget.cycle_s);
   planner.seed = budget.seed;
   if (!budget.safety) planner.safety = SafetyCheck::kNone;
+  budget.tuning.apply_to(planner);
   const double default_edges = lockstep ? 4.0 * static_cast<double>(budget.lockstep_edges)
                                         : kEdgesPerBudgetMs * budget.budget_ms;
   planner.max_edges =

@@ -41,6 +41,7 @@ Status ReplanningSession<V>::create_cycle(double time_scale, bool lockstep, bool
   budget.lockstep_edges = lockstep ? config_.lockstep_edges : 0;
   budget.seed = config_.seed;
   budget.safety = !config_.no_safety;
+  budget.tuning = config_.tuning;
   auto sized = size_cycle(budget);
   if (!sized) return sized.error();
   sizing_ = std::move(sized).value();

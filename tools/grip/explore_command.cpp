@@ -29,7 +29,7 @@
 #include "grip/sim/map_file.hpp"
 #include "grip/sim/sim_participant.hpp"
 #include "grip/sim/start_pose.hpp"
-#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 #include "render.hpp"
 #include "report_file.hpp"
 #include "speed_profile.hpp"
@@ -233,7 +233,7 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
 sim::SimRunConfig sim_config(const ExploreOptions& o, VehicleKind robot, const World& world) {
   sim::SimRunConfig c;
   c.domain = o.domain;
-  c.robot = robot;
+  c.vehicle = default_vehicle_params(robot);
   c.world = world.name;
   c.start_x_m = world.start.x_m;
   c.start_y_m = world.start.y_m;
@@ -309,7 +309,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     rt::dds::PlannerParticipantConfig pc;
     if (trace) pc.on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
     pc.domain = o.domain;
-    pc.robot = *robot;
+    pc.vehicle = default_vehicle_params(*robot);
     pc.seed = o.seed;
     pc.no_safety = o.no_safety;
     pc.lockstep_edges = o.lockstep_edges;

@@ -63,7 +63,7 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o) {
   rt::dds::PlannerParticipantConfig config;
   auto robot = vehicle_kind_from_name(o.robot);
   if (!robot) return robot.error();
-  config.robot = *robot;
+  config.vehicle = default_vehicle_params(*robot);
   auto policy = platform::parse_policy_request(o.policy);
   if (!policy) return policy.error();
   config.policy = *policy;

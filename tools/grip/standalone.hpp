@@ -9,7 +9,7 @@
 
 #include "grip/planner/planner.hpp"
 #include "grip/scenes/scenes.hpp"
-#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 #include "render.hpp"
 
 namespace grip::tools {

@@ -12,6 +12,7 @@ Status CarParams::validate() const {
                             std::to_string(min_speed_m_s) + ")");
   }
   if (auto s = validate_positive("car.max_accel_m_s2", max_accel_m_s2); !s) return s;
+  if (auto s = validate_positive("car.braking_decel_m_s2", braking_decel_m_s2); !s) return s;
   if (auto s = validate_positive("car.max_steer_rad", max_steer_rad); !s) return s;
   if (max_steer_rad >= std::numbers::pi / 2) {
     return invalid_argument("car.max_steer_rad must be < pi/2 (got " +
@@ -71,11 +72,11 @@ Car::Control Car::sample_control(const State& q, double hold_s, Random& rng) con
 
 Car::Control Car::braking_control(const State& q) const noexcept {
   if (q[3] == 0.0) return Control::Zero();
-  return {-std::copysign(params_.max_accel_m_s2, q[3]), 0.0};
+  return {-std::copysign(params_.braking_decel_m_s2, q[3]), 0.0};
 }
 
 Car::State Car::brake_step(const State& q, double dt) const noexcept {
-  const double time_to_stop = std::abs(q[3]) / params_.max_accel_m_s2;
+  const double time_to_stop = std::abs(q[3]) / params_.braking_decel_m_s2;
   const Control u = braking_control(q);
   if (time_to_stop > dt) return step(q, u, dt);
   State rest = time_to_stop > 0.0 ? step(q, u, time_to_stop) : q;
@@ -99,8 +100,8 @@ Status Car::validate_state(const State& q) const {
 
 Status Car::validate_control(const Control& u) const {
   if (auto s = validate_finite_state("car control", u.data(), 2); !s) return s;
-  if (std::abs(u[0]) > params_.max_accel_m_s2 + 1e-9 ||
-      std::abs(u[1]) > params_.max_steer_rate_rad_s + 1e-9) {
+  const double max_accel = std::max(params_.max_accel_m_s2, params_.braking_decel_m_s2);
+  if (std::abs(u[0]) > max_accel + 1e-9 || std::abs(u[1]) > params_.max_steer_rate_rad_s + 1e-9) {
     return invalid_argument("car control outside its limits (a " + std::to_string(u[0]) +
                             " m/s^2, steering rate " + std::to_string(u[1]) + " rad/s)");
   }

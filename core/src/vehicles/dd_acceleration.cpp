@@ -15,6 +15,7 @@ Status DdAccelerationParams::validate() const {
   if (auto s = validate_positive("dd-accel.max_wheel_accel_m_s2", max_wheel_accel_m_s2); !s) {
     return s;
   }
+  if (auto s = validate_positive("dd-accel.braking_decel_m_s2", braking_decel_m_s2); !s) return s;
   if (auto s = validate_positive("dd-accel.half_axle_m", half_axle_m); !s) return s;
   if (auto s = validate_share("dd-accel.velocity_target_share", velocity_target_share); !s) {
     return s;
@@ -98,13 +99,13 @@ DdAcceleration::Control DdAcceleration::braking_control(const State& q) const no
   // ratio fixed the wheel speed difference shrinks too, so the turn-rate bound holds.
   const double fastest = std::max(std::abs(q[3]), std::abs(q[4]));
   if (fastest == 0.0) return Control::Zero();
-  const double scale = params_.max_wheel_accel_m_s2 / fastest;
+  const double scale = params_.braking_decel_m_s2 / fastest;
   return {-q[3] * scale, -q[4] * scale};
 }
 
 DdAcceleration::State DdAcceleration::brake_step(const State& q, double dt) const noexcept {
   const double fastest = std::max(std::abs(q[3]), std::abs(q[4]));
-  const double time_to_stop = fastest / params_.max_wheel_accel_m_s2;
+  const double time_to_stop = fastest / params_.braking_decel_m_s2;
   const Control u = braking_control(q);
   if (time_to_stop > dt) return step(q, u, dt);
   State rest = time_to_stop > 0.0 ? step(q, u, time_to_stop) : q;
@@ -126,10 +127,10 @@ Status DdAcceleration::validate_state(const State& q) const {
 
 Status DdAcceleration::validate_control(const Control& u) const {
   if (auto s = validate_finite_state("dd-accel control", u.data(), 2); !s) return s;
-  const double a = params_.max_wheel_accel_m_s2;
+  const double a = std::max(params_.max_wheel_accel_m_s2, params_.braking_decel_m_s2);
   if (std::abs(u[0]) > a + 1e-9 || std::abs(u[1]) > a + 1e-9) {
-    return invalid_argument("dd-accel wheel acceleration exceeds max_wheel_accel_m_s2 " +
-                            std::to_string(a));
+    return invalid_argument("dd-accel wheel acceleration exceeds " + std::to_string(a) +
+                            " m/s^2 (max_wheel_accel_m_s2 or braking_decel_m_s2)");
   }
   return Ok{};
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "grip/common/enum_names.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 
 namespace grip {
 
@@ -55,6 +56,28 @@ Status validate_footprint(std::string_view vehicle, const Footprint& f) {
                             std::to_string(f.front_m) + " + " + std::to_string(f.rear_m) + ")");
   }
   return Ok{};
+}
+
+VehicleKind vehicle_kind(const VehicleParams& params) noexcept {
+  if (std::holds_alternative<DdVelocityParams>(params)) return VehicleKind::kDdVelocity;
+  if (std::holds_alternative<DdAccelerationParams>(params)) return VehicleKind::kDdAcceleration;
+  return VehicleKind::kCar;
+}
+
+VehicleParams default_vehicle_params(VehicleKind kind) noexcept {
+  switch (kind) {
+    case VehicleKind::kDdVelocity:
+      return DdVelocityParams{};
+    case VehicleKind::kDdAcceleration:
+      return DdAccelerationParams{};
+    case VehicleKind::kCar:
+      break;
+  }
+  return CarParams{};
+}
+
+Status validate(const VehicleParams& params) {
+  return std::visit([](const auto& p) { return p.validate(); }, params);
 }
 
 }  // namespace grip

@@ -18,7 +18,7 @@
 #include "grip/platform/wakeup.hpp"
 #include "grip/rt/liveness_beat.hpp"
 #include "grip/rt/periodic_loop.hpp"
-#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 #include "handoff.hpp"
 #include "map_update.h"
 #include "participant_threads.hpp"
@@ -398,12 +398,13 @@ std::string PlannerParticipantFor<V>::progress_line(const PlannerParticipantRepo
 
 Result<std::unique_ptr<PlannerParticipant>> PlannerParticipant::create(
     const PlannerParticipantConfig& config) {
+  if (Status s = validate(config.vehicle); !s) return s.error();
   auto entities = Entities::create(config);
   if (!entities) return entities.error();
   auto wakeups = Wakeups::create();
   if (!wakeups) return wakeups.error();
-  return with_default_vehicle(
-      config.robot, [&](const auto& vehicle) -> Result<std::unique_ptr<PlannerParticipant>> {
+  return with_vehicle(
+      config.vehicle, [&](const auto& vehicle) -> Result<std::unique_ptr<PlannerParticipant>> {
         using V = std::remove_cvref_t<decltype(vehicle)>;
         auto self = std::make_unique<PlannerParticipantFor<V>>(
             config, vehicle, std::move(entities).value(), std::move(wakeups).value());

@@ -26,6 +26,7 @@ Status PlanningSide<V>::create_map(const link::MapGeometry& geometry) {
   session.no_safety = config_.no_safety;
   session.max_plan_steps = grip_msg_kMaxPlanSteps;
   session.target_refresh_cycles = config_.target_refresh_cycles;
+  session.tuning = config_.tuning;
   auto created = ReplanningSession<V>::create(vehicle_, std::move(grid).value(), session);
   if (!created) return created.error();
   session_.emplace(std::move(created).value());
@@ -56,6 +57,7 @@ Status PlanningSide<V>::prepare(const VehicleSample& state, bool explore) {
   ReplanningSession<V>& session = *session_;
   if (Status s = session.create_cycle(state.time_scale, state.lockstep, explore); !s) return s;
   ExplorationDriverConfig exploration;
+  exploration.target.frontier = config_.frontier;
   exploration.target.give_up_after_s = config_.frontier_give_up_s;
   exploration.refresh_cycles = config_.target_refresh_cycles;
   exploration.sensing_radius_m = config_.sensing_radius_m;

@@ -14,7 +14,7 @@
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/range_sensor.hpp"
 #include "grip/sim/retraced_distance.hpp"
-#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 
 namespace grip::sim {
 
@@ -291,7 +291,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
 Result<SimRunReport> run_simulation(const SimRunConfig& config, const OccupancyGrid& truth,
                                     const std::atomic<bool>& stop,
                                     const std::function<void(const SimProgress&)>& progress) {
-  return with_default_vehicle(config.robot, [&](const auto& vehicle) {
+  if (Status s = validate(config.vehicle); !s) return s.error();
+  return with_vehicle(config.vehicle, [&](const auto& vehicle) {
     return run_with(vehicle, config, truth, stop, progress);
   });
 }

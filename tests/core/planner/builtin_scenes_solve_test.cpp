@@ -7,7 +7,7 @@
 
 #include "grip/planner/planner.hpp"
 #include "grip/scenes/scenes.hpp"
-#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 #include "test_support.hpp"
 
 namespace grip {

@@ -1,5 +1,5 @@
 #include "grip/planner/planner.hpp"
-#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 
 #include <gtest/gtest.h>
 

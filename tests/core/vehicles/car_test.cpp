@@ -72,6 +72,28 @@ TEST_F(CarTest, ContingencyBrakesAtTheLimitToRestKeepingTheSteeringAngle) {
   EXPECT_EQ(q[3], 0.0);
 }
 
+TEST(CarBraking, BrakesHarderThanItAcceleratesWhenItsBrakesAllow) {
+  CarParams p;
+  p.braking_decel_m_s2 = 1.2;
+  const Car car = Car::create(p).value();
+  Car::State q;
+  q << 0, 0, 0, 3.0, 0.0;
+  EXPECT_DOUBLE_EQ(car.braking_control(q)[0], -1.2);
+  EXPECT_DOUBLE_EQ(car.max_stopping_time_s(), 2.5);
+  while (!car.is_stopped(q)) q = car.brake_step(q, 0.05);
+  EXPECT_NEAR(q[0], 3.0 * 3.0 / (2.0 * 1.2), 1e-6);  // v^2 / (2 d) = 3.75 m
+  // The executor accepts the braking control, and no more than the larger limit.
+  EXPECT_TRUE(car.validate_control(Car::Control{-1.2, 0.0}));
+  EXPECT_FALSE(car.validate_control(Car::Control{-1.3, 0.0}));
+  // Sampled controls stay within the drive's own acceleration.
+  Random rng(3);
+  for (int i = 0; i < 1000; ++i) EXPECT_LE(std::abs(car.sample_control(rng)[0]), 0.6);
+  p.braking_decel_m_s2 = 0.0;
+  auto refused = Car::create(p);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("braking_decel_m_s2"), std::string::npos);
+}
+
 TEST_F(CarTest, ReversingCarBrakesForwardToRest) {
   Car::State q = state(0, 0, 0, -0.5, 0.2);
   EXPECT_DOUBLE_EQ(car.braking_control(q)[0], 0.6);

@@ -33,7 +33,7 @@ using namespace ::grip::link;
 PlannerParticipantConfig planner_config(platform::dds::DomainId domain, double duration_s) {
   PlannerParticipantConfig config;
   config.domain = domain;
-  config.robot = VehicleKind::kDdVelocity;
+  config.vehicle = default_vehicle_params(VehicleKind::kDdVelocity);
   config.cycle_s = 0.05;
   config.budget_s = 0.02;
   config.duration_s = duration_s;
@@ -290,7 +290,7 @@ TEST(PlannerParticipant, AVehicleBrakingOffItsPlansIsPlannedForFromWhereBrakingT
   ASSERT_NE(vehicle, nullptr);
   ASSERT_TRUE(vehicle->publish_goal());
   PlannerParticipantConfig config = planner_config(kDomain, 0.0);
-  config.robot = VehicleKind::kDdAcceleration;
+  config.vehicle = default_vehicle_params(VehicleKind::kDdAcceleration);
   RunningPlanner planner(config);
   ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
   VehicleLink& link = vehicle->link();

@@ -83,4 +83,18 @@ struct PlannerConfig {
   Status validate() const;
 };
 
+// What a vehicle's parameter file tunes of GRIP's search (Sec. III-B, Eq. 3); the rest of
+// PlannerConfig follows from the cycle (rt/cycle_sizing.hpp). Checked by PlannerConfig::validate.
+struct GripTuning {
+  double score_base_a = PlannerConfig{}.score_base_a;
+  double min_plan_duration_s = PlannerConfig{}.min_plan_duration_s;
+  double max_plan_duration_s = PlannerConfig{}.max_plan_duration_s;
+
+  void apply_to(PlannerConfig& config) const noexcept {
+    config.score_base_a = score_base_a;
+    config.min_plan_duration_s = min_plan_duration_s;
+    config.max_plan_duration_s = max_plan_duration_s;
+  }
+};
+
 }  // namespace grip

@@ -16,10 +16,13 @@
 namespace grip {
 
 struct CarParams {
-  double max_speed_m_s = 3.0;                   // paper: v <= 3
-  double min_speed_m_s = -0.5;                  // paper: reverse down to about -0.5
-  double max_accel_m_s2 = 0.6;                  // paper: |a| <= 0.6
-  double max_steer_rad = std::numbers::pi / 4;  // paper: |delta| <= 45 deg
+  double max_speed_m_s = 3.0;   // paper: v <= 3
+  double min_speed_m_s = -0.5;  // paper: reverse down to about -0.5
+  double max_accel_m_s2 = 0.6;  // paper: |a| <= 0.6
+  // The contingency's deceleration: a vehicle's brakes may stop it harder than its drive
+  // accelerates it. Plans may hold |a| up to the larger of the two.
+  double braking_decel_m_s2 = 0.6;                                // paper: the acceleration bound
+  double max_steer_rad = std::numbers::pi / 4;                    // paper: |delta| <= 45 deg
   double max_steer_rate_rad_s = 19.5 * std::numbers::pi / 180.0;  // paper: 19.5 (deg/s read)
   double wheelbase_m = 0.5;                                       // L
   Footprint footprint{0.6, 0.15, 0.2};  // 0.75 m x 0.4 m around the rear axle
@@ -50,7 +53,7 @@ class Car {
   State brake_step(const State& q, double dt) const noexcept;
   bool is_stopped(const State& q) const noexcept { return q[3] == 0.0; }
   double max_stopping_time_s() const noexcept {
-    return std::max(params_.max_speed_m_s, -params_.min_speed_m_s) / params_.max_accel_m_s2;
+    return std::max(params_.max_speed_m_s, -params_.min_speed_m_s) / params_.braking_decel_m_s2;
   }
   double max_speed_m_s() const noexcept {
     return std::max(params_.max_speed_m_s, -params_.min_speed_m_s);

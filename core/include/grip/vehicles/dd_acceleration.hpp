@@ -17,7 +17,10 @@ struct DdAccelerationParams {
   double max_wheel_speed_m_s = 3.0;                   // paper: |V| <= 3
   double max_turn_rate_rad_s = std::numbers::pi / 2;  // paper: |theta'| <= 90 deg/s
   double max_wheel_accel_m_s2 = 0.6;                  // paper: |a| <= 0.6
-  double half_axle_m = 0.2;                           // L
+  // The contingency's deceleration of the faster wheel: brakes may stop a vehicle harder than
+  // its drive accelerates it. Plans may hold |a| up to the larger of the two.
+  double braking_decel_m_s2 = 0.6;  // paper: the acceleration bound
+  double half_axle_m = 0.2;         // L
   Footprint footprint{0.25, 0.25, 0.2};
   // The share of the planner's sampled controls that steer the wheel speeds to a random target
   // (sample_control with a state), in [0, 1].

@@ -22,6 +22,7 @@ struct CycleBudget {
   std::uint32_t lockstep_edges = 0;
   std::uint64_t seed = 1;
   bool safety = true;  // false: the paper's ablation without the contingency check
+  GripTuning tuning;
 };
 
 // Retaining a tree costs time in proportion to its size (it is re-timed, re-checked and

@@ -50,6 +50,7 @@ struct SessionConfig {
   std::uint32_t max_plan_steps = 1024;  // pieces a sent plan may have
   // Exploring, rho comes with each frontier target, chosen every this many cycles.
   std::uint32_t target_refresh_cycles = 5;
+  GripTuning tuning;
 };
 
 // A cycle's plan, as sent (an empty plan when the cycle has none).

@@ -27,7 +27,7 @@
 #include "grip/common/result.hpp"
 #include "grip/platform/dds/participant.hpp"
 #include "grip/sim/plan_executor.hpp"
-#include "grip/vehicles/vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 #include "grip/world/occupancy_grid.hpp"
 #include "plan.h"
 #include "planner_status.h"
@@ -37,7 +37,8 @@ namespace grip::sim {
 struct SimRunConfig {
   platform::dds::DomainId domain = 0;
   std::string dds_config;  // empty: the built-in loopback-only configuration
-  VehicleKind robot = VehicleKind::kCar;
+  // The vehicle simulated: its limits bound the plans it executes, its footprint the collisions.
+  VehicleParams vehicle = CarParams{};
   std::string world;  // the scene name or map file, for the report
   double start_x_m = 0.0;
   double start_y_m = 0.0;

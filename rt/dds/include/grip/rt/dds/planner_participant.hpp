@@ -30,29 +30,32 @@
 #include <vector>
 
 #include "grip/common/result.hpp"
+#include "grip/exploration/frontier.hpp"
+#include "grip/planner/planner_config.hpp"
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/memory.hpp"
 #include "grip/platform/scheduling.hpp"
 #include "grip/rt/latency_histogram.hpp"
 #include "grip/rt/periodic_loop.hpp"
-#include "grip/vehicles/vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 
 namespace grip::rt::dds {
 
 struct PlannerParticipantConfig {
   platform::dds::DomainId domain = 0;
   std::string dds_config;  // Cyclone XML or file:// URI; empty: the built-in loopback-only one
-  VehicleKind robot = VehicleKind::kCar;
-  double cycle_s = 0.05;    // T, in vehicle time
-  double budget_s = 0.025;  // planning time per cycle, in vehicle time
-  double margin_s = -1.0;   // growth stops this long before the deadline; < 0: wall-clock
-                            // default_safety_margin_ms(budget)
+  VehicleParams vehicle = CarParams{};  // checked by create()
+  double cycle_s = 0.05;                // T, in vehicle time
+  double budget_s = 0.025;              // planning time per cycle, in vehicle time
+  double margin_s = -1.0;  // growth stops this long before the deadline; < 0: wall-clock
+                           // default_safety_margin_ms(budget)
   platform::PolicyRequest policy = platform::PolicyRequest::kAuto;
   std::uint32_t max_edges = 0;  // 0: 400 per millisecond of wall-clock budget (lockstep: 4 cycles)
   // Lockstep (the vehicle's states ask for it: a simulator that waits for each plan): one cycle
   // per state, growing this many edges whatever the time, so that a seed reproduces a run.
   // 1000 is about what 2.5 ms of growth adds on a current x86 core.
   std::uint32_t lockstep_edges = 1000;
+  GripTuning tuning;  // GRIP's a and plan durations
   std::uint32_t max_map_cells = 1U << 22;
   std::uint64_t seed = 1;
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
@@ -67,6 +70,8 @@ struct PlannerParticipantConfig {
   // A frontier target the vehicle gets no closer to (by rho_A*, 0.5 m) for this long, in
   // vehicle time, is given up (FrontierMap::give_up) and the next one chosen.
   double frontier_give_up_s = 60.0;
+  // How frontier cells are grouped and groups scored; its clearance_m is the planner's own.
+  FrontierConfig frontier;
   // The frontier target is chosen again every this many cycles (1: every cycle). In real time the
   // choice runs on the target thread, but taking it over still costs the planning thread rho
   // toward the new target and the path selector's rays (whole-map passes, 0.5 to 1 ms on the
