@@ -39,7 +39,7 @@
 #include "grip/common/result.hpp"
 #include "grip/planner/planner.hpp"
 #include "grip/planner/step_margin.hpp"
-#include "grip/vehicles/default_vehicle.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 #include "grip/world/collision_checker.hpp"
 
 namespace grip::ompl_bridge {
