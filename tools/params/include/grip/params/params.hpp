@@ -1,0 +1,87 @@
+#pragma once
+// One vehicle's parameter file: the vehicle, the planner, the sensor, exploration, the DDS link
+// and the runtime, the same file for the planner and the vehicle side. Read at start-up only
+// (yaml-cpp); the planning path sees the configurations made from it.
+//
+// Values are SI units with the unit in the key (max_speed_m_s). "auto" stands for a value
+// derived at start-up (the edge pool from the budget, the sensor range from the map); in the
+// structs below it is the zero (or negative) value the runtime already reads that way.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "grip/common/result.hpp"
+#include "grip/exploration/frontier.hpp"
+#include "grip/planner/planner_config.hpp"
+#include "grip/platform/scheduling.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
+
+namespace grip::params {
+
+struct PlannerParams {
+  double cycle_s = 0.05;        // T, in vehicle time
+  double budget_s = 0.025;      // planning time per cycle, in vehicle time
+  double margin_s = -1.0;       // growth stops this long before the deadline; < 0: "auto"
+  GripTuning tuning;            // a, the plan duration range
+  std::uint32_t max_edges = 0;  // the edge pool; 0: "auto" (from the budget)
+  std::uint32_t lockstep_edges = 1000;
+  std::uint32_t max_map_cells = 1U << 22;
+  bool safety = true;  // false: the paper's ablation without the contingency check
+};
+
+struct SensorParams {
+  double range_m = 0.0;    // 0: "auto", a tenth of the map's larger side
+  std::uint32_t rays = 0;  // 0: "auto", enough that no cell in range slips between two rays
+};
+
+struct ExplorationParams {
+  double sensing_radius_m = 0.0;  // d_max of the path weight; 0: "auto", a tenth of the map
+  // Grouping and scoring of frontier cells; clearance_m is the planner's and not a parameter.
+  FrontierConfig frontier;
+  double give_up_s = 60.0;  // a frontier target not approached for this long is given up
+  std::uint32_t target_refresh_cycles = 5;
+  double stuck_after_s = 300.0;  // the simulator: no coverage or progress for this long
+};
+
+struct LinkParams {
+  unsigned domain = 0;
+  std::string dds_config;  // a Cyclone XML file; empty: the loopback-only built-in
+  // Prepended to every topic name, so that two vehicles can share a domain; empty: none.
+  std::string topic_prefix;
+  double liveliness_lease_s = 0.5;
+};
+
+struct RuntimeParams {
+  platform::PolicyRequest policy = platform::PolicyRequest::kAuto;
+  int fifo_priority = 80;  // SCHED_FIFO, 1..99
+  int cpu = -1;            // the planning thread's CPU under fifo or other; -1: "any"
+  bool lock_memory = true;
+};
+
+struct GripParams {
+  VehicleParams vehicle = DdVelocityParams{};
+  PlannerParams planner;
+  SensorParams sensor;
+  ExplorationParams exploration;
+  LinkParams link;
+  RuntimeParams runtime;
+};
+
+// The built-in vehicle of `kind` (the paper's), with every other section at its default.
+GripParams default_params(VehicleKind kind);
+
+// A parameter file. Errors (kInvalidArgument), each naming "file:line:column", the key and what
+// is allowed: malformed YAML, an unknown key, a missing vehicle.model, a wrong type, a value out
+// of range. Keys left out keep the defaults of vehicle.model.
+Result<GripParams> load_params(const std::string& path);
+// The same from text; `name` stands for the file in messages.
+Result<GripParams> parse_params(std::string_view text, std::string_view name);
+
+// Every parameter, as YAML that parse_params reads back to the same values.
+std::string to_yaml(const GripParams& params);
+
+// Ok, or the first value out of range, by its key ("planner.budget_s must be ...").
+Status validate(const GripParams& params);
+
+}  // namespace grip::params
