@@ -16,8 +16,8 @@
 
 #include "grip/common/enum_names.hpp"
 #include "grip/platform/os_call.hpp"
-#include "privileges.hpp"
 #include "grip/platform/proc_files.hpp"
+#include "privileges.hpp"
 #include "scheduling_diagnosis.hpp"
 
 namespace grip::platform {
@@ -84,6 +84,16 @@ int set_posix_policy(int policy, int priority) noexcept {
       .error;
 }
 
+int pin_to_cpu(int cpu) noexcept {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(static_cast<std::size_t>(cpu), &set);
+  return os_call_returning_error(
+             "pthread_setaffinity_np",
+             [&] { return ::pthread_setaffinity_np(::pthread_self(), sizeof set, &set); })
+      .error;
+}
+
 std::string refused(SchedPolicy policy, const std::string& why) {
   return std::string(kernel_policy_name(policy)) + " refused: " + why;
 }
@@ -145,6 +155,16 @@ Status validate(const SchedulingRequest& request) {
                               ")");
     }
   }
+  if (request.cpu < -1 || request.cpu >= CPU_SETSIZE) {
+    return invalid_argument("scheduling.cpu must be -1 (any) or in [0, " +
+                            std::to_string(CPU_SETSIZE - 1) + "] (got " +
+                            std::to_string(request.cpu) + ")");
+  }
+  if (request.cpu >= 0 && request.request == PolicyRequest::kDeadline) {
+    return invalid_argument("scheduling.cpu pins the thread to CPU " + std::to_string(request.cpu) +
+                            ", but SCHED_DEADLINE needs it free to run on every CPU of its root "
+                            "domain: pin with policy fifo or other");
+  }
   if (wants_fifo && (request.fifo_priority < 1 || request.fifo_priority > 99)) {
     return invalid_argument("scheduling.fifo_priority must be in [1, 99] (got " +
                             std::to_string(request.fifo_priority) + ")");
@@ -154,6 +174,16 @@ Status validate(const SchedulingRequest& request) {
 
 Result<SchedulingOutcome> apply_scheduling(const SchedulingRequest& request) {
   if (const Status valid = validate(request); !valid.ok()) return valid.error();
+  std::string reasons;
+  if (request.cpu >= 0) {
+    if (const int error = pin_to_cpu(request.cpu); error != 0) {
+      return Error{ErrorCode::kIo, "pinning to CPU " + std::to_string(request.cpu) +
+                                       " refused: " + std::string(errno_name(error)) +
+                                       " (not online, or outside the thread's cpuset)"};
+    }
+    reasons =
+        "SCHED_DEADLINE not tried: the thread is pinned to CPU " + std::to_string(request.cpu);
+  }
   const int priority = request.fifo_priority;
   switch (request.request) {
     case PolicyRequest::kDeadline: {
@@ -177,10 +207,12 @@ Result<SchedulingOutcome> apply_scheduling(const SchedulingRequest& request) {
     case PolicyRequest::kAuto:
       break;
   }
-  int error = set_deadline(request);
-  if (error == 0) return SchedulingOutcome{SchedPolicy::kDeadline, {}};
-  std::string reasons =
-      refused(SchedPolicy::kDeadline, detail::explain_deadline_refusal(error, request));
+  int error = 0;
+  if (request.cpu < 0) {
+    error = set_deadline(request);
+    if (error == 0) return SchedulingOutcome{SchedPolicy::kDeadline, {}};
+    reasons = refused(SchedPolicy::kDeadline, detail::explain_deadline_refusal(error, request));
+  }
   error = set_posix_policy(SCHED_FIFO, priority);
   if (error == 0) return SchedulingOutcome{SchedPolicy::kFifo, reasons};
   reasons += "; " + refused(SchedPolicy::kFifo, detail::explain_fifo_refusal(error, priority));

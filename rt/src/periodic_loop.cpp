@@ -40,6 +40,8 @@ Result<std::unique_ptr<PeriodicLoop>> PeriodicLoop::start(const PeriodicLoopConf
   planner_config.name = config.name;
   planner_config.lock_memory = false;  // done above
   planner_config.scheduling.request = config.policy;
+  planner_config.scheduling.fifo_priority = config.fifo_priority;
+  planner_config.scheduling.cpu = config.cpu;
   // The reservation's deadline is the period (an implicit deadline), not the budget: the budget
   // is this loop's deadline, measured against its own timeline. A constrained deadline (below
   // the period) makes the kernel throttle a thread that wakes after its deadline but before the

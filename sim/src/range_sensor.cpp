@@ -19,15 +19,25 @@ double RangeSensor::default_radius_m(const OccupancyGrid& truth) noexcept {
   return 0.1 * std::max(truth.width_m(), truth.height_m());
 }
 
-Result<RangeSensor> RangeSensor::create(const OccupancyGrid& truth, double radius_m) {
+Result<RangeSensor> RangeSensor::create(const OccupancyGrid& truth, double radius_m,
+                                        std::uint32_t rays) {
   if (!std::isfinite(radius_m) || radius_m <= 0.0) {
     return invalid_argument("range sensor radius_m must be a finite number > 0 (got " +
                             std::to_string(radius_m) + ")");
   }
   const double radius_cells = radius_m / truth.resolution();
-  const double rays = std::max<double>(
-      kMinRays, std::ceil(2.0 * std::numbers::pi * radius_cells / kRaySpacingCells));
-  if (rays > kMaxRays) {
+  if (rays != 0 && (rays < kMinRays || rays > kMaxRays)) {
+    return invalid_argument("range sensor rays must be 0 (enough for every cell in range) or in [" +
+                            std::to_string(kMinRays) + ", " +
+                            std::to_string(static_cast<std::uint32_t>(kMaxRays)) + "] (got " +
+                            std::to_string(rays) + ")");
+  }
+  const double ray_count =
+      rays != 0
+          ? rays
+          : std::max<double>(kMinRays,
+                             std::ceil(2.0 * std::numbers::pi * radius_cells / kRaySpacingCells));
+  if (ray_count > kMaxRays) {
     return invalid_argument("range sensor radius_m " + std::to_string(radius_m) +
                             " needs more than 2^20 rays at resolution " +
                             std::to_string(truth.resolution()) + " m");
@@ -37,7 +47,7 @@ Result<RangeSensor> RangeSensor::create(const OccupancyGrid& truth, double radiu
   const double side = 2.0 * std::ceil(radius_cells) + 3.0;
   const auto capacity =
       static_cast<std::size_t>(std::min(side * side, static_cast<double>(truth.cell_count())));
-  return RangeSensor(truth, radius_m, static_cast<std::uint32_t>(rays), capacity);
+  return RangeSensor(truth, radius_m, static_cast<std::uint32_t>(ray_count), capacity);
 }
 
 RangeSensor::RangeSensor(const OccupancyGrid& truth, double radius_m, std::uint32_t rays,

@@ -153,6 +153,12 @@ std::vector<BadRequest> bad_requests() {
   r = request(PolicyRequest::kAuto);
   r.fifo_priority = 100;
   cases.push_back({"fifo priority 100", r, "scheduling.fifo_priority"});
+  r = request(PolicyRequest::kOther);
+  r.cpu = -2;
+  cases.push_back({"cpu -2", r, "scheduling.cpu must be -1 (any) or in [0, "});
+  r = request(PolicyRequest::kDeadline);
+  r.cpu = 0;
+  cases.push_back({"deadline pinned", r, "scheduling.cpu pins the thread to CPU 0"});
   return cases;
 }
 
@@ -284,6 +290,37 @@ TEST(RealtimeScheduling, PinnedThreadAskingExplicitlyForDeadlineIsRefusedWithThe
   EXPECT_TRUE(contains(applied.outcome.error().message, "SCHED_DEADLINE refused: EPERM"));
   EXPECT_TRUE(contains(applied.outcome.error().message, "affinity"));
   EXPECT_EQ(applied.policy_after, SchedPolicy::kOther) << "a refused request changes nothing";
+}
+
+TEST(RealtimeScheduling, ACpuRequestPinsTheThreadAndAutoStartsAtFifo) {
+  // GIVEN a request pinned to the last online CPU
+  const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+  ASSERT_GE(cpus, 1);
+  SchedulingRequest pinned = request(PolicyRequest::kAuto);
+  pinned.cpu = static_cast<int>(cpus - 1);
+  // WHEN a fresh thread applies it
+  const auto [outcome, affinity] = in_fresh_thread([&] {
+    Result<SchedulingOutcome> applied = apply_scheduling(pinned);
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    EXPECT_EQ(sched_getaffinity(0, sizeof set, &set), 0);
+    return std::pair{std::move(applied), set};
+  });
+  // THEN it runs on that CPU alone, and SCHED_DEADLINE was not tried, saying so
+  ASSERT_TRUE(outcome.ok()) << outcome.error().message;
+  EXPECT_EQ(CPU_COUNT(&affinity), 1);
+  EXPECT_TRUE(CPU_ISSET(static_cast<std::size_t>(pinned.cpu), &affinity));
+  EXPECT_NE(outcome->policy, SchedPolicy::kDeadline);
+  EXPECT_TRUE(contains(outcome->fallback_reason, "SCHED_DEADLINE not tried: the thread is pinned"))
+      << outcome->fallback_reason;
+
+  // AND a CPU that is not online is refused, naming it
+  SchedulingRequest absent = request(PolicyRequest::kOther);
+  absent.cpu = CPU_SETSIZE - 1;
+  const Applied refused = apply_in_fresh_thread(absent);
+  ASSERT_FALSE(refused.outcome.ok());
+  EXPECT_TRUE(contains(refused.outcome.error().message, "pinning to CPU 1023 refused: EINVAL"))
+      << refused.outcome.error().message;
 }
 
 // Deadline admission control: full-CPU reservations are granted until the root domain's

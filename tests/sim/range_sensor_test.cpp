@@ -130,6 +130,29 @@ TEST(RangeSensorCreateTest, TheRadiusMustBePositiveAndFinite) {
   EXPECT_NE(nan.error().message.find("radius_m"), std::string::npos);
 }
 
+TEST(RangeSensorCreateTest, ARealSensorsBeamCountIsTakenAndOutOfRangeOnesRefused) {
+  const OccupancyGrid truth = make_grid(41, 41, Cell::kFree);
+  // GIVEN a 16-beam sensor of range 20 m: its beams are 7.9 m apart at full range
+  auto sparse = RangeSensor::create(truth, 20.0, 16);
+  ASSERT_TRUE(sparse.ok());
+  EXPECT_EQ(sparse->ray_count(), 16U);
+  OccupancyGrid seen_sparse = make_grid(41, 41, Cell::kUnknown);
+  OccupancyGrid seen_dense = make_grid(41, 41, Cell::kUnknown);
+  // WHEN it senses from the centre, beside a sensor with the default count
+  const SenseResult few = sparse->sense(20.5, 20.5, seen_sparse);
+  auto dense = RangeSensor::create(truth, 20.0);
+  ASSERT_TRUE(dense.ok());
+  const SenseResult many = dense->sense(20.5, 20.5, seen_dense);
+  // THEN it sees fewer cells, as that sensor would
+  EXPECT_LT(few.changed_cells.size() * 2, many.changed_cells.size());
+  // AND a count below 16 or above 2^20 is refused, naming rays
+  for (const std::uint32_t bad : {1U, 15U, (1U << 20) + 1}) {
+    const auto refused = RangeSensor::create(truth, 5.0, bad);
+    ASSERT_FALSE(refused.ok()) << bad;
+    EXPECT_NE(refused.error().message.find("rays must be 0"), std::string::npos);
+  }
+}
+
 TEST(RangeSensorCreateTest, TheDefaultRadiusIsATenthOfTheLargerSide) {
   const OccupancyGrid grid = make_grid(300, 150, Cell::kFree, 0.1);
   EXPECT_DOUBLE_EQ(RangeSensor::default_radius_m(grid), 3.0);

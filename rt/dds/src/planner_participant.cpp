@@ -265,6 +265,8 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_real_time() {
   loop_config.period = std::chrono::nanoseconds(period_wall);
   loop_config.budget = std::chrono::nanoseconds(ns_of(config_.budget_s / planning_.time_scale()));
   loop_config.policy = config_.policy;
+  loop_config.fifo_priority = config_.fifo_priority;
+  loop_config.cpu = config_.cpu;
   loop_config.lock_memory = config_.lock_memory;
   loop_config.reference_timer = false;
   loop_config.cycles = config_.duration_s > 0.0

@@ -52,7 +52,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
 
   const double radius =
       config.sensor_radius_m > 0.0 ? config.sensor_radius_m : RangeSensor::default_radius_m(truth);
-  auto sensor = RangeSensor::create(truth, radius);
+  auto sensor = RangeSensor::create(truth, radius, config.sensor_rays);
   if (!sensor) return sensor.error();
   const State start =
       vehicle.rest_state(config.start_x_m, config.start_y_m, config.start_theta_rad);

@@ -44,6 +44,10 @@ struct SchedulingRequest {
   std::chrono::nanoseconds period{};    // >= 1 ms
   // SCHED_FIFO priority, 1 (lowest) .. 99. Needed (and validated) for kAuto and kFifo only.
   int fifo_priority = 80;
+  // The one CPU the thread may run on (-1: any). A SCHED_DEADLINE thread must be free to run
+  // on every CPU of its root domain, so a pinned thread is never given it: kDeadline is refused
+  // and kAuto starts at SCHED_FIFO.
+  int cpu = -1;
 };
 
 // Ok, or kInvalidArgument naming the field: "scheduling.runtime (3000000 ns) must be <=

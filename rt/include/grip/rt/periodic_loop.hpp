@@ -39,6 +39,8 @@ struct PeriodicLoopConfig {
   std::chrono::nanoseconds period{50'000'000};
   std::chrono::nanoseconds budget{25'000'000};  // the deadline after each release
   platform::PolicyRequest policy = platform::PolicyRequest::kAuto;
+  int fifo_priority = 80;  // under SCHED_FIFO
+  int cpu = -1;            // pinned to this CPU (never under SCHED_DEADLINE); -1: any
   std::uint64_t cycles = 100;
   bool lock_memory = true;
   // Cycles before the allocation and page-fault counts start (caches, first-touch of the

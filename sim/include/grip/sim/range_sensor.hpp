@@ -41,9 +41,13 @@ class RangeSensor {
   // side of the grid, so a long narrow map still gets a useful radius.
   static double default_radius_m(const OccupancyGrid& truth) noexcept;
 
+  // rays: the N above when 0; a real sensor's beam count otherwise (16 to 1 << 20), with which
+  // cells far out may fit between two rays, as they do for that sensor.
   // Errors (kInvalidArgument): radius_m not finite or <= 0, or so large that the ray count
-  // exceeds 1 << 20. The truth grid must outlive the sensor and must not move.
-  static Result<RangeSensor> create(const OccupancyGrid& truth, double radius_m);
+  // exceeds 1 << 20; rays outside its range. The truth grid must outlive the sensor and must
+  // not move.
+  static Result<RangeSensor> create(const OccupancyGrid& truth, double radius_m,
+                                    std::uint32_t rays = 0);
 
   // Senses from (x_m, y_m) and writes the seen cells into `known`. A sensor point outside the
   // grid sees nothing. Asserts that `known` has the truth's width, height, resolution and origin.

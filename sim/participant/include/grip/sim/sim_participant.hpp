@@ -45,8 +45,9 @@ struct SimRunConfig {
   double start_theta_rad = 0.0;
   double time_scale = 1.0;  // simulated seconds per wall-clock second (not in lockstep)
   bool lockstep = false;
-  double cycle_s = 0.05;         // the planner's T, for the QoS deadlines
-  double sensor_radius_m = 0.0;  // 0: a tenth of the map's larger side
+  double cycle_s = 0.05;          // the planner's T, for the QoS deadlines
+  double sensor_radius_m = 0.0;   // 0: a tenth of the map's larger side
+  std::uint32_t sensor_rays = 0;  // 0: enough that no cell in range slips between rays
   double max_sim_time_s = 600.0;
   // No coverage gained and no metre nearer to unsensed ground (through the free space, by the
   // ground truth) for this long: stuck. A vehicle crossing a maze to its last frontier keeps

@@ -50,6 +50,8 @@ struct PlannerParticipantConfig {
   double margin_s = -1.0;  // growth stops this long before the deadline; < 0: wall-clock
                            // default_safety_margin_ms(budget)
   platform::PolicyRequest policy = platform::PolicyRequest::kAuto;
+  int fifo_priority = 80;       // the planning thread's, under SCHED_FIFO
+  int cpu = -1;                 // the planning thread pinned to this CPU (fifo or other); -1: any
   std::uint32_t max_edges = 0;  // 0: 400 per millisecond of wall-clock budget (lockstep: 4 cycles)
   // Lockstep (the vehicle's states ask for it: a simulator that waits for each plan): one cycle
   // per state, growing this many edges whatever the time, so that a seed reproduces a run.
