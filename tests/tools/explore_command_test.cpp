@@ -190,6 +190,49 @@ TEST(ExploreCommand, LockstepExplorationCompletesWithoutCollisionAndASeedReprodu
   EXPECT_EQ(reports[0], reports[1]) << "the same seed gave two different runs";
 }
 
+// A vehicle that is not the paper's, defined only in a parameter file: a car 1.2 m x 0.6 m with
+// a 0.9 m wheelbase, 2 m/s top speed and brakes of 1.2 m/s^2. Planner and simulator both take
+// it from the file: the run stays within its top speed, and the report's parameters are the
+// file's, in a form `--params` reads back.
+TEST(ExploreCommand, AVehicleDefinedOnlyInAParameterFileExploresWithinItsLimits) {
+  const std::string params = ::testing::TempDir() + "grip-compact-car.yaml";
+  {
+    std::ofstream out(params);
+    out << "vehicle:\n  model: car\n  max_speed_m_s: 2.0\n  braking_decel_m_s2: 1.2\n"
+           "  wheelbase_m: 0.9\n  footprint: {front_m: 0.95, rear_m: 0.25, half_width_m: 0.3}\n";
+  }
+  const std::string report = ::testing::TempDir() + "grip-compact-car.json";
+  const CommandRun r = run("explore --map " + write_small_map() + " --params " + params +
+                           " --lockstep --seed 1 --max-sim-time 600 --domain 76 --report " +
+                           report);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = read_json(report);
+  expect_a_sane_run(j, r.output);
+  EXPECT_EQ(j.at("robot"), "car");
+  EXPECT_DOUBLE_EQ(j.at("max_speed_m_s").get<double>(), 2.0);
+  double fastest = 0.0;
+  for (const auto& sample : j.at("speed_profile")) {
+    fastest = std::max(fastest, sample.at(1).get<double>());
+  }
+  EXPECT_LE(fastest, 2.0) << "faster than the file's top speed";
+  EXPECT_GT(fastest, 0.5) << "the car hardly moved";
+
+  const std::string effective = ::testing::TempDir() + "grip-compact-car-effective.yaml";
+  {
+    std::ofstream out(effective);
+    out << j.at("parameters").get<std::string>();
+  }
+  const CommandRun printed = run("params --params " + effective);
+  ASSERT_EQ(printed.status, 0) << printed.output;
+  EXPECT_EQ(printed.output, j.at("parameters").get<std::string>());
+  EXPECT_NE(printed.output.find("wheelbase_m: 0.9"), std::string::npos) << printed.output;
+
+  const CommandRun contradicted = run("explore --robot dd-vel --params " + params);
+  EXPECT_EQ(contradicted.status, 2) << contradicted.output;
+  EXPECT_NE(contradicted.output.find("--robot dd-vel contradicts " + params), std::string::npos)
+      << contradicted.output;
+}
+
 // Plans lost on the way (as if they came too late): the vehicle goes on with the plan it has,
 // the planner sees from its states that it does not follow the plans it was sent, and plans
 // from where it will be. A lost plan costs at most one refused plan after it, never a

@@ -9,7 +9,8 @@ namespace grip::tools {
 Result<std::string> choose_dds_config(const std::string& dds_config_option) {
   if (!dds_config_option.empty()) {
     if (access(dds_config_option.c_str(), R_OK) != 0) {
-      return invalid_argument("--dds-config: cannot read '" + dds_config_option + "'");
+      return invalid_argument("cannot read the Cyclone DDS configuration '" + dds_config_option +
+                              "'");
     }
     return "file://" + dds_config_option;
   }
@@ -19,13 +20,17 @@ Result<std::string> choose_dds_config(const std::string& dds_config_option) {
   return std::string();
 }
 
+void add_dds_config_option(CLI::App& command, std::string& dds_config_option) {
+  command.add_option("--dds-config", dds_config_option,
+                     "Cyclone DDS XML configuration file (default: $CYCLONEDDS_URI, else the "
+                     "built-in loopback-only one)");
+}
+
 void add_link_options(CLI::App& command, std::uint32_t& domain, std::string& dds_config_option) {
   command.add_option("--domain", domain, "DDS domain id")
       ->check(CLI::Range(0U, kMaxDomainId))
       ->capture_default_str();
-  command.add_option("--dds-config", dds_config_option,
-                     "Cyclone DDS XML configuration file (default: $CYCLONEDDS_URI, else the "
-                     "built-in loopback-only one)");
+  add_dds_config_option(command, dds_config_option);
 }
 
 Result<platform::dds::Participant> join_domain(std::uint32_t domain,

@@ -1,8 +1,9 @@
 #pragma once
 // Which Cyclone configuration a command that talks to a vehicle or a planner on a real network
-// uses (`grip planner`, `grip echo`, `grip goal`): the file given with --dds-config, else the
-// CYCLONEDDS_URI of the environment, as Cyclone users expect, else the project's loopback-only
-// configuration. `grip explore`, `grip sim` and the benchmarks always stay on loopback.
+// uses (`grip planner`, `grip echo`, `grip goal`): the file given with --dds-config (for
+// `grip planner`, else its parameter file's link.dds_config), else the CYCLONEDDS_URI of the
+// environment, as Cyclone users expect, else the project's loopback-only configuration.
+// `grip explore`, `grip sim` and the benchmarks always stay on loopback.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -14,13 +15,15 @@
 namespace grip::tools {
 
 // For Participant::create: a file:// URI, the environment's value, or empty (the built-in
-// loopback configuration). Refuses a --dds-config file that cannot be read, naming it.
+// loopback configuration). Refuses a configuration file that cannot be read, naming it.
 Result<std::string> choose_dds_config(const std::string& dds_config_option);
 
 // The largest DDS domain id: the RTPS port mapping (7400 + 250 x domain + ...) leaves UDP ports
 // for domains 0 to 232.
 inline constexpr std::uint32_t kMaxDomainId = 232;
 
+// The --dds-config option of a command on a real link.
+void add_dds_config_option(CLI::App& command, std::string& dds_config_option);
 // The --domain and --dds-config options of a command on a real link.
 void add_link_options(CLI::App& command, std::uint32_t& domain, std::string& dds_config_option);
 

@@ -30,6 +30,7 @@
 #include "grip/sim/sim_participant.hpp"
 #include "grip/sim/start_pose.hpp"
 #include "grip/vehicles/vehicle_params.hpp"
+#include "params_options.hpp"
 #include "render.hpp"
 #include "report_file.hpp"
 #include "speed_profile.hpp"
@@ -43,15 +44,12 @@ struct ExploreOptions {
   std::string scene = "rooms";
   std::string map;
   std::string start;
-  std::string robot = "dd-vel";
+  ParamsOptions params{.default_robot = "dd-vel"};
   std::uint64_t seed = 1;
   double time_scale = kDefaultTimeScale;
   double max_sim_time_s = kDefaultMaxSimTimeS;
-  bool no_safety = false;
   bool lockstep = false;
   double drop_plans = 0.0;
-  std::uint32_t lockstep_edges = kDefaultLockstepEdges;
-  unsigned domain = 0;
   std::string report;
   std::string image;
   std::string cycle_trace;  // grip explore: the planner's cycles, as CSV
@@ -63,7 +61,7 @@ struct World {
   sim::StartPose start;
 };
 
-Result<World> load_world(const ExploreOptions& o, VehicleKind robot) {
+Result<World> load_world(const ExploreOptions& o, const params::GripParams& p) {
   if (o.map.empty()) {
     auto scene = make_scene(o.scene);
     if (!scene) return scene.error();
@@ -77,11 +75,9 @@ Result<World> load_world(const ExploreOptions& o, VehicleKind robot) {
   if (!loaded) return loaded.error();
   // The chassis, and the collision margin the planner checks the start with (for its cycle's
   // integration step).
-  const auto [footprint, planner_margin_m] = with_default_vehicle(robot, [](const auto& v) {
+  const auto [footprint, planner_margin_m] = with_vehicle(p.vehicle, [&p](const auto& v) {
     return std::pair<Footprint, double>{
-        v.footprint(),
-        step_collision_margin_m(
-            v, integration_step_for_cycle(rt::dds::PlannerParticipantConfig{}.cycle_s))};
+        v.footprint(), step_collision_margin_m(v, integration_step_for_cycle(p.planner.cycle_s))};
   });
   sim::StartPose start;
   if (o.start.empty()) {
@@ -99,8 +95,8 @@ Result<World> load_world(const ExploreOptions& o, VehicleKind robot) {
   return World{o.map, std::move(loaded->grid), start};
 }
 
-nlohmann::json report_json(const ExploreOptions& o, const World& world,
-                           const sim::SimRunReport& r) {
+nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
+                           const World& world, const sim::SimRunReport& r) {
   nlohmann::json j;
   j["result"] = r.result;
   if (!r.reason.empty()) j["reason"] = r.reason;
@@ -128,15 +124,17 @@ nlohmann::json report_json(const ExploreOptions& o, const World& world,
   j["max_start_error_m"] = r.max_start_error_m;
   j["planner_losses"] = r.planner_losses;
   j["world"] = world.name;
-  j["robot"] = o.robot;
+  j["robot"] = vehicle_name(vehicle_kind(p.vehicle));
   j["seed"] = o.seed;
   j["lockstep"] = o.lockstep;
   if (o.lockstep) {
-    j["lockstep_edges"] = o.lockstep_edges;
+    j["lockstep_edges"] = p.planner.lockstep_edges;
   } else {
     j["time_scale"] = o.time_scale;
   }
-  j["safety"] = !o.no_safety;
+  j["safety"] = p.planner.safety;
+  // The effective parameters, as a file `--params` reads back.
+  j["parameters"] = params::to_yaml(p);
   j["start"] = {world.start.x_m, world.start.y_m, world.start.theta_rad};
   j["max_speed_m_s"] = r.max_speed_m_s;
   if (!r.trajectory.empty()) j["end"] = {r.trajectory.back()[0], r.trajectory.back()[1]};
@@ -198,7 +196,8 @@ Status draw_run(const World& world, const sim::SimRunReport& r,
   return canvas->write_png(path);
 }
 
-int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRunReport>& run,
+int finish(const ExploreOptions& o, const params::GripParams& p, const World& world,
+           const Result<sim::SimRunReport>& run,
            const rt::dds::PlannerTreePicture& tree, const char* command) {
   if (!run) {
     std::cerr << command << ": " << run.error().message << "\n";
@@ -219,7 +218,7 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
                                     : "")
             << "), contingency stops " << r.contingency_stops << "\n";
   if (!o.report.empty()) {
-    if (!write_report(command, o.report, report_json(o, world, r), 1)) return 1;
+    if (!write_report(command, o.report, report_json(o, p, world, r), 1)) return 1;
   }
   if (!o.image.empty()) {
     if (Status s = draw_run(world, r, tree, o.image); !s) {
@@ -230,10 +229,9 @@ int finish(const ExploreOptions& o, const World& world, const Result<sim::SimRun
   return r.result == "complete" ? 0 : 3;
 }
 
-sim::SimRunConfig sim_config(const ExploreOptions& o, VehicleKind robot, const World& world) {
-  sim::SimRunConfig c;
-  c.domain = o.domain;
-  c.vehicle = default_vehicle_params(robot);
+sim::SimRunConfig sim_config(const ExploreOptions& o, const params::GripParams& p,
+                             const World& world) {
+  sim::SimRunConfig c = sim_run_config(p);
   c.world = world.name;
   c.start_x_m = world.start.x_m;
   c.start_y_m = world.start.y_m;
@@ -267,16 +265,16 @@ Status validate(const ExploreOptions& o) {
 
 int run_explore(const ExploreOptions& o, bool with_planner) {
   const char* command = with_planner ? "grip explore" : "grip sim";
-  auto robot = vehicle_kind_from_name(o.robot);
-  if (!robot) {
-    std::cerr << command << ": " << robot.error().message << "\n";
+  auto p = effective_params(o.params);
+  if (!p) {
+    std::cerr << command << ": " << p.error().message << "\n";
     return 2;
   }
   if (Status s = validate(o); !s) {
     std::cerr << command << ": " << s.error().message << "\n";
     return 2;
   }
-  auto world = load_world(o, *robot);
+  auto world = load_world(o, *p);
   if (!world) {
     std::cerr << command << ": " << world.error().message << "\n";
     return 2;
@@ -306,13 +304,9 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     trace.emplace(std::move(opened).value());
   }
   if (with_planner) {
-    rt::dds::PlannerParticipantConfig pc;
+    rt::dds::PlannerParticipantConfig pc = planner_participant_config(*p);
     if (trace) pc.on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
-    pc.domain = o.domain;
-    pc.vehicle = default_vehicle_params(*robot);
     pc.seed = o.seed;
-    pc.no_safety = o.no_safety;
-    pc.lockstep_edges = o.lockstep_edges;
     pc.startup_timeout = std::chrono::seconds(30);
     auto created = rt::dds::PlannerParticipant::create(pc);
     if (!created) {
@@ -334,7 +328,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
       }
     });
   }
-  sim::SimRunConfig config = sim_config(o, *robot, *world);
+  sim::SimRunConfig config = sim_config(o, *p, *world);
   config.on_finished = [&] {
     sim_finished.store(true);
     if (planner) planner->request_stop();
@@ -360,7 +354,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
   }
   const rt::dds::PlannerTreePicture tree =
       planner ? planner->last_tree() : rt::dds::PlannerTreePicture{};
-  return finish(o, *world, run, tree, command);
+  return finish(o, *p, *world, run, tree, command);
 }
 
 void add_common_options(CLI::App* cmd, ExploreOptions& o) {
@@ -368,7 +362,7 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
   cmd->add_option("--map", o.map,
                   "A MovingAI .map or ROS map_server .yaml file instead of a scene");
   cmd->add_option("--start", o.start, "X,Y[,THETA] with --map (default: chosen)");
-  cmd->add_option("--robot", o.robot, "dd-vel, dd-accel or car")->capture_default_str();
+  add_vehicle_options(*cmd, o.params);
   cmd->add_option("--seed", o.seed, "Planner seed")->capture_default_str();
   cmd->add_option("--time-scale", o.time_scale, "Simulated seconds per wall-clock second")
       ->capture_default_str();
@@ -383,9 +377,7 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
                   "came too late; drawn from --seed)")
       ->check(CLI::Range(0.0, 0.5))
       ->capture_default_str();
-  cmd->add_option("--domain", o.domain, "DDS domain id")
-      ->check(CLI::Range(0U, kMaxDomainId))
-      ->capture_default_str();
+  add_domain_option(*cmd, o.params);
   cmd->add_option("--report", o.report, "Write the JSON report here");
   cmd->add_option("--image", o.image, "Draw the run into this PNG");
 }
@@ -397,14 +389,9 @@ void register_explore_commands(CLI::App& app) {
   CLI::App* e = app.add_subcommand(
       "explore", "Explore an unknown workspace: simulator and planner as two DDS participants");
   add_common_options(e, *explore);
-  e->add_option("--lockstep-edges", explore->lockstep_edges,
-                "With --lockstep: edges the planner grows per cycle")
-      ->check(CLI::Range(1U, 200'000U))
-      ->capture_default_str();
+  add_lockstep_options(*e, explore->params);
   e->add_option("--cycle-trace", explore->cycle_trace,
                 "Write every planning cycle's timing and outcome here (CSV)");
-  e->add_flag("--no-safety", explore->no_safety,
-              "The paper's ablation: plans are not checked for a safe braking maneuver");
   e->callback([explore]() {
     if (const int rc = run_explore(*explore, true); rc != 0) throw CLI::RuntimeError(rc);
   });

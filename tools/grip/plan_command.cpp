@@ -2,9 +2,11 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "commands.hpp"
+#include "params_options.hpp"
 #include "standalone.hpp"
 
 namespace grip::tools {
@@ -12,24 +14,25 @@ namespace grip::tools {
 namespace {
 struct PlanOptions {
   std::string scene = "meandros";
-  std::string robot = "dd-accel";
+  ParamsOptions params{.default_robot = "dd-accel"};
   std::string planner = "grip";
   std::uint64_t seed = 1;
   std::uint64_t max_edges = 100'000;
   double time_limit_s = 0.0;
   bool all_leaves_safe = false;
-  double score_base_a = PlannerConfig{}.score_base_a;
-  double min_plan_duration_s = PlannerConfig{}.min_plan_duration_s;
-  double max_plan_duration_s = PlannerConfig{}.max_plan_duration_s;
+  // Overrides of the parameters' planner section.
+  std::optional<double> score_base_a;
+  std::optional<double> min_plan_duration_s;
+  std::optional<double> max_plan_duration_s;
   double rho_clearance_m = PlannerConfig{}.rho_clearance_m;
   std::string image;
 };
 
 int run_plan(const PlanOptions& o) {
   auto scene = make_scene(o.scene);
-  auto kind = vehicle_kind_from_name(o.robot);
+  auto params = effective_params(o.params);
   auto selection = selection_from_name(o.planner);
-  for (const Error* e : {scene ? nullptr : &scene.error(), kind ? nullptr : &kind.error(),
+  for (const Error* e : {scene ? nullptr : &scene.error(), params ? nullptr : &params.error(),
                          selection ? nullptr : &selection.error()}) {
     if (e != nullptr) {
       std::cerr << "grip plan: " << e->message << "\n";
@@ -43,26 +46,29 @@ int run_plan(const PlanOptions& o) {
   PlannerConfig config;
   config.selection = *selection;
   config.seed = o.seed;
-  config.score_base_a = o.score_base_a;
-  config.min_plan_duration_s = o.min_plan_duration_s;
-  config.max_plan_duration_s = o.max_plan_duration_s;
+  GripTuning& tuning = params->planner.tuning;
+  tuning.score_base_a = o.score_base_a.value_or(tuning.score_base_a);
+  tuning.min_plan_duration_s = o.min_plan_duration_s.value_or(tuning.min_plan_duration_s);
+  tuning.max_plan_duration_s = o.max_plan_duration_s.value_or(tuning.max_plan_duration_s);
+  tuning.apply_to(config);
   config.rho_clearance_m = o.rho_clearance_m;
   config.safety = o.all_leaves_safe ? SafetyCheck::kAllLeaves : SafetyCheck::kAtHorizon;
   config = config_for_edge_cap(config, o.max_edges);
-  return with_default_vehicle(*kind, [&](const auto& vehicle) {
+  const std::string robot(vehicle_name(vehicle_kind(params->vehicle)));
+  return with_vehicle(params->vehicle, [&](const auto& vehicle) {
     Status drawn = Ok{};
     auto outcome = run_standalone(
         vehicle, *scene, config, o.max_edges, o.time_limit_s, [&](const auto& planner) {
           if (o.image.empty()) return;
           drawn =
-              draw_planner(*scene, planner, o.planner + " / " + o.robot + " / " + o.scene, o.image);
+              draw_planner(*scene, planner, o.planner + " / " + robot + " / " + o.scene, o.image);
         });
     if (!outcome) {
       std::cerr << "grip plan: " << outcome.error().message << "\n";
       return 2;
     }
     const auto& r = *outcome;
-    std::cout << o.planner << " on " << o.scene << " with " << o.robot << " (seed " << o.seed
+    std::cout << o.planner << " on " << o.scene << " with " << robot << " (seed " << o.seed
               << "): " << (r.solved ? "reached the goal" : "did not reach the goal") << " after "
               << r.edges_added << " edges in " << r.solve_time_s << " s ("
               << stop_reason_name(r.reason) << ")\n"
@@ -84,18 +90,15 @@ void register_plan_command(CLI::App& app) {
   auto o = std::make_shared<PlanOptions>();
   CLI::App* cmd = app.add_subcommand("plan", "Solve one standalone problem on a built-in scene");
   cmd->add_option("--scene", o->scene, "meandros, labyrinth or rooms")->capture_default_str();
-  cmd->add_option("--robot", o->robot, "dd-vel, dd-accel or car")->capture_default_str();
+  add_vehicle_options(*cmd, o->params);
   cmd->add_option("--planner", o->planner, "grip, rrt, rrt-bias or random")->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
   cmd->add_option("--max-edges", o->max_edges, "Stop after this many edges")->capture_default_str();
   cmd->add_option("--time-limit", o->time_limit_s, "Stop after this many seconds (0: none)")
       ->check(CLI::Range(0.0, 86400.0));
   cmd->add_option("--score-base-a", o->score_base_a, "GRIP's a > 1 in s(e) = a^p(e) rho(e, F)")
-      ->capture_default_str();
   cmd->add_option("--min-plan-duration", o->min_plan_duration_s, "Shortest random plan [s]")
-      ->capture_default_str();
   cmd->add_option("--max-plan-duration", o->max_plan_duration_s, "Longest random plan [s]")
-      ->capture_default_str();
   cmd->add_option("--rho-clearance", o->rho_clearance_m,
                   "rho_A* is computed for a disk of this radius [m]")
       ->capture_default_str();

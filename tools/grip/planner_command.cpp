@@ -16,7 +16,6 @@
 #include <string>
 
 #include "commands.hpp"
-#include "cycle_options.hpp"
 #include "cycle_trace.hpp"
 #include "dds_config.hpp"
 #include "grip/platform/overrun_watcher.hpp"
@@ -24,6 +23,7 @@
 #include "grip/rt/dds/planner_participant.hpp"
 #include "grip/tools/log.hpp"
 #include "latency_json.hpp"
+#include "params_options.hpp"
 #include "report_file.hpp"
 
 namespace grip::tools {
@@ -31,16 +31,8 @@ namespace grip::tools {
 namespace {
 
 struct PlannerOptions {
-  std::string robot = "car";
-  std::uint32_t domain = 0;
+  ParamsOptions params{.default_robot = "car"};
   std::string dds_config;
-  double period_ms = 50.0;
-  double budget_ms = 25.0;
-  double margin_ms = -1.0;
-  std::string policy = "auto";
-  std::uint32_t max_edges = 0;
-  std::uint32_t lockstep_edges = kDefaultLockstepEdges;
-  double lease_ms = 500.0;
   double duration_s = 0.0;
   double startup_timeout_s = 0.0;
   std::uint64_t seed = 1;
@@ -59,32 +51,17 @@ extern "C" void stop_on_signal(int) {
   if (auto* planner = g_running.load()) planner->request_stop();
 }
 
-Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o) {
-  rt::dds::PlannerParticipantConfig config;
-  auto robot = vehicle_kind_from_name(o.robot);
-  if (!robot) return robot.error();
-  config.vehicle = default_vehicle_params(*robot);
-  auto policy = platform::parse_policy_request(o.policy);
-  if (!policy) return policy.error();
-  config.policy = *policy;
-  config.domain = o.domain;
-  Result<std::string> dds_config = choose_dds_config(o.dds_config);
-  if (!dds_config) return dds_config.error();
-  config.dds_config = *dds_config;
-  if (Status s = validate_cycle_options(o.period_ms, o.budget_ms, o.margin_ms, o.max_edges); !s) {
-    return s.error();
-  }
-  if (!(o.lease_ms >= 10.0)) return invalid_argument("--lease-ms must be at least 10");
+Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o,
+                                                    const params::GripParams& p) {
   if (!(o.duration_s >= 0.0) || !(o.startup_timeout_s >= 0.0)) {
     return invalid_argument("--duration and --startup-timeout must be >= 0");
   }
-  config.cycle_s = o.period_ms / 1e3;
-  config.budget_s = o.budget_ms / 1e3;
-  config.margin_s = o.margin_ms < 0.0 ? -1.0 : o.margin_ms / 1e3;
-  config.max_edges = o.max_edges;
-  config.lockstep_edges = o.lockstep_edges;
+  rt::dds::PlannerParticipantConfig config = planner_participant_config(p);
+  Result<std::string> dds_config =
+      choose_dds_config(o.dds_config.empty() ? p.link.dds_config : o.dds_config);
+  if (!dds_config) return dds_config.error();
+  config.dds_config = *dds_config;
   config.seed = o.seed;
-  config.liveliness_lease = std::chrono::nanoseconds(static_cast<std::int64_t>(o.lease_ms * 1e6));
   config.duration_s = o.duration_s;
   config.startup_timeout =
       std::chrono::nanoseconds(static_cast<std::int64_t>(o.startup_timeout_s * 1e9));
@@ -142,7 +119,12 @@ int run_planner(const PlannerOptions& o) {
     return 2;
   }
   const Logger log("grip planner", *level);
-  auto config = to_config(o);
+  auto p = effective_params(o.params);
+  if (!p) {
+    log.error(p.error().message);
+    return 2;
+  }
+  auto config = to_config(o, *p);
   if (!config) {
     log.error(config.error().message);
     return 2;
@@ -174,7 +156,9 @@ int run_planner(const PlannerOptions& o) {
   g_running.store(planner->get());
   std::signal(SIGINT, stop_on_signal);
   std::signal(SIGTERM, stop_on_signal);
-  log.info(o.robot + " on DDS domain " + std::to_string(o.domain) + " (" +
+  const std::string robot(vehicle_name(vehicle_kind(p->vehicle)));
+  log.info(robot + (o.params.file.empty() ? "" : " from " + o.params.file) + " on DDS domain " +
+           std::to_string(config->domain) + " (" +
            (config->dds_config.empty() ? "loopback-only configuration" : config->dds_config) +
            "); waiting for map, vehicle state and goal");
   service.check(service.notifier().status("waiting for map, vehicle state and goal"));
@@ -209,7 +193,8 @@ int run_planner(const PlannerOptions& o) {
             << " page faults, " << overruns->overruns() << " overruns\n";
   if (!o.report.empty()) {
     nlohmann::json j;
-    j["robot"] = o.robot;
+    j["robot"] = robot;
+    j["parameters"] = params::to_yaml(*p);
     j["policy"] = r.policy;
     j["policy_fallback_reason"] = r.policy_fallback;
     j["publish_thread_policy"] = r.publish_policy;
@@ -250,22 +235,11 @@ void register_planner_command(CLI::App& app) {
       "planner",
       "Run the planner as a DDS participant (vehicle computer): state, map and goal in, "
       "plans and status out");
-  cmd->add_option("--robot", o->robot, "dd-vel, dd-accel or car")->capture_default_str();
-  add_link_options(*cmd, o->domain, o->dds_config);
-  cmd->add_option("--period-ms", o->period_ms, "Cycle T in vehicle time [ms]")
-      ->capture_default_str();
-  cmd->add_option("--budget-ms", o->budget_ms, "Planning time per cycle in vehicle time [ms]")
-      ->capture_default_str();
-  cmd->add_option("--margin-ms", o->margin_ms,
-                  "Growth stops this long before the deadline [ms] (default: budget/5)");
-  cmd->add_option("--policy", o->policy, "auto, deadline, fifo or other")->capture_default_str();
-  cmd->add_option("--max-edges", o->max_edges, "Edge pool (default: 400 per ms of budget)");
-  cmd->add_option("--lockstep-edges", o->lockstep_edges,
-                  "Edges per cycle when the vehicle runs in lockstep (a `grip sim --lockstep`)")
-      ->check(CLI::Range(1U, 200'000U))
-      ->capture_default_str();
-  cmd->add_option("--lease-ms", o->lease_ms, "Liveliness lease of every endpoint [ms]")
-      ->capture_default_str();
+  add_vehicle_options(*cmd, o->params);
+  add_domain_option(*cmd, o->params);
+  add_dds_config_option(*cmd, o->dds_config);
+  add_cycle_options(*cmd, o->params);
+  add_lockstep_options(*cmd, o->params);
   cmd->add_option("--seed", o->seed, "Planner seed")->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "Seconds of planning, 0: until Ctrl-C")
       ->capture_default_str();

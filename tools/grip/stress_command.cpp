@@ -21,7 +21,6 @@
 #include <thread>
 
 #include "commands.hpp"
-#include "cycle_options.hpp"
 #include "grip/common/random.hpp"
 #include "grip/platform/alloc_counter.hpp"
 #include "grip/platform/clock.hpp"
@@ -34,6 +33,7 @@
 #include "grip/rt/triple_buffer.hpp"
 #include "grip/tools/load_generator.hpp"
 #include "latency_json.hpp"
+#include "params_options.hpp"
 #include "report_file.hpp"
 #include "standalone.hpp"
 
@@ -43,17 +43,12 @@ namespace {
 
 struct StressOptions {
   double duration_s = 10.0;
-  double period_ms = 50.0;
-  double budget_ms = 25.0;
-  double margin_ms = -1.0;  // default: a fifth of the budget
+  ParamsOptions params{.default_robot = "car"};  // the vehicle, the cycle and the policy
   std::string load = "none";
-  std::string policy = "auto";
-  std::string robot = "car";
   std::string scene = "rooms";
   std::uint64_t seed = 1;
   std::string report;
   double max_miss_rate = -1.0;
-  std::uint32_t max_edges = 0;  // default: from the budget
   bool static_world = false;    // no map or target changes: shows what retainment keeps
 };
 
@@ -72,9 +67,6 @@ Status validate(const StressOptions& o) {
   const auto bad = [](const std::string& m) { return Status(invalid_argument(m)); };
   if (!std::isfinite(o.duration_s) || o.duration_s <= 0.0 || o.duration_s > 7 * 24 * 3600.0) {
     return bad("--duration must be in (0, 604800] s (got " + std::to_string(o.duration_s) + ")");
-  }
-  if (Status s = validate_cycle_options(o.period_ms, o.budget_ms, o.margin_ms, o.max_edges); !s) {
-    return s;
   }
   if (o.max_miss_rate != -1.0 && (!(o.max_miss_rate >= 0.0) || o.max_miss_rate > 1.0)) {
     return bad("--max-miss-rate must be in [0, 1] (got " + std::to_string(o.max_miss_rate) + ")");
@@ -143,15 +135,19 @@ class Environment {
 };
 
 template <VehicleModel V>
-int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
-               platform::OverrunWatcher& overruns, LoadGenerator& load,
-               platform::PolicyRequest policy) {
-  const double period_s = o.period_ms / 1e3;
+int run_stress(const StressOptions& o, const params::GripParams& p, const V& vehicle, Scene scene,
+               platform::OverrunWatcher& overruns, LoadGenerator& load) {
+  // In real time at scale 1: vehicle time is wall-clock time.
+  const double period_s = p.planner.cycle_s;
+  const double period_ms = period_s * 1e3;
+  const double budget_ms = p.planner.budget_s * 1e3;
   rt::CycleBudget budget;
   budget.cycle_s = period_s;
-  budget.budget_ms = o.budget_ms;
-  budget.margin_ms = o.margin_ms;
-  budget.max_edges = o.max_edges;
+  budget.budget_ms = budget_ms;
+  budget.margin_ms = p.planner.margin_s < 0.0 ? -1.0 : p.planner.margin_s * 1e3;
+  budget.max_edges = p.planner.max_edges;
+  budget.tuning = p.planner.tuning;
+  budget.safety = p.planner.safety;
   budget.seed = o.seed;
   auto sized = rt::size_cycle(budget);
   if (!sized) {
@@ -198,9 +194,12 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   };
 
   rt::PeriodicLoopConfig loop_config;
-  loop_config.period = std::chrono::nanoseconds(static_cast<std::int64_t>(o.period_ms * 1e6));
-  loop_config.budget = std::chrono::nanoseconds(static_cast<std::int64_t>(o.budget_ms * 1e6));
-  loop_config.policy = policy;
+  loop_config.period = std::chrono::nanoseconds(static_cast<std::int64_t>(period_ms * 1e6));
+  loop_config.budget = std::chrono::nanoseconds(static_cast<std::int64_t>(budget_ms * 1e6));
+  loop_config.policy = p.runtime.policy;
+  loop_config.fifo_priority = p.runtime.fifo_priority;
+  loop_config.cpu = p.runtime.cpu;
+  loop_config.lock_memory = p.runtime.lock_memory;
   loop_config.cycles = static_cast<std::uint64_t>(std::llround(o.duration_s / period_s));
 
   // The environment thread, started before the real-time threads (a SCHED_DEADLINE thread
@@ -320,7 +319,7 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   const double reference_p99_us = us(result.reference_wake_latency.percentile(0.99));
   nlohmann::json report;
   report["policy"] = platform::policy_name(sched.policy);
-  report["policy_requested"] = o.policy;
+  report["policy_requested"] = platform::request_name(p.runtime.policy);
   report["policy_fallback_reason"] = sched.fallback_reason;
   report["memory_locked"] = result.planner_thread.memory.locked;
   report["memory_lock_reason"] = result.planner_thread.memory.reason;
@@ -352,7 +351,8 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
   report["kernel"] = kernel;
   report["load"] = {{"kind", o.load}, {"description", load.description()}};
   report["records_dropped"] = result.records_dropped;
-  report["planner"] = {{"robot", o.robot},
+  report["parameters"] = params::to_yaml(p);
+  report["planner"] = {{"robot", vehicle_name(vehicle_kind(p.vehicle))},
                        {"scene", o.scene},
                        {"edges_added", edges_added},
                        {"edges_per_cycle", per(edges_added, cycles)},
@@ -375,14 +375,14 @@ int run_stress(const StressOptions& o, const V& vehicle, Scene scene,
                        {"cycles_arrival_later", arrival_later}};
   report["world"] = o.static_world ? "static" : "changing";
   report["config"] = {{"duration_s", o.duration_s},
-                      {"period_ms", o.period_ms},
-                      {"budget_ms", o.budget_ms},
+                      {"period_ms", period_ms},
+                      {"budget_ms", budget_ms},
                       {"margin_ms", margin_ms},
                       {"seed", o.seed},
                       {"integration_step_s", planner_config.integration_step_s}};
 
-  std::cout << "grip stress: " << result.cycles << " cycles of " << o.period_ms << " ms (budget "
-            << o.budget_ms << " ms, margin " << margin_ms << " ms) on " << kernel << "\n"
+  std::cout << "grip stress: " << result.cycles << " cycles of " << period_ms << " ms (budget "
+            << budget_ms << " ms, margin " << margin_ms << " ms) on " << kernel << "\n"
             << "  policy " << platform::policy_name(sched.policy)
             << (sched.fallback_reason.empty() ? "" : " (fallback: " + sched.fallback_reason + ")")
             << ", memory "
@@ -441,12 +441,10 @@ int run_stress_command(const StressOptions& o) {
     return 2;
   }
   auto load_kind = parse_load(o.load);
-  auto policy = platform::parse_policy_request(o.policy);
-  auto kind = vehicle_kind_from_name(o.robot);
+  auto params = effective_params(o.params);
   auto scene = make_scene(o.scene);
-  for (const Error* e :
-       {load_kind ? nullptr : &load_kind.error(), policy ? nullptr : &policy.error(),
-        kind ? nullptr : &kind.error(), scene ? nullptr : &scene.error()}) {
+  for (const Error* e : {load_kind ? nullptr : &load_kind.error(),
+                         params ? nullptr : &params.error(), scene ? nullptr : &scene.error()}) {
     if (e != nullptr) {
       std::cerr << "grip stress: " << e->message << "\n";
       return 2;
@@ -465,8 +463,8 @@ int run_stress_command(const StressOptions& o) {
     std::cerr << "grip stress: " << load.error().message << "\n";
     return 2;
   }
-  return with_default_vehicle(*kind, [&](const auto& vehicle) {
-    return run_stress(o, vehicle, std::move(scene).value(), *overruns, *load, *policy);
+  return with_vehicle(params->vehicle, [&](const auto& vehicle) {
+    return run_stress(o, *params, vehicle, std::move(scene).value(), *overruns, *load);
   });
 }
 
@@ -477,20 +475,13 @@ void register_stress_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "stress", "Deadline-miss stress test: the real planner on the real planning thread");
   cmd->add_option("--duration", o->duration_s, "Seconds to run")->capture_default_str();
-  cmd->add_option("--period-ms", o->period_ms, "Planning cycle period [ms]")->capture_default_str();
-  cmd->add_option("--budget-ms", o->budget_ms, "Compute budget per cycle (the deadline) [ms]")
-      ->capture_default_str();
-  cmd->add_option("--margin-ms", o->margin_ms,
-                  "The planner stops this long before its deadline (default: budget/5)");
+  add_vehicle_options(*cmd, o->params);
+  add_cycle_options(*cmd, o->params);
   cmd->add_option("--load", o->load, "none, cpu, mem or all")->capture_default_str();
-  cmd->add_option("--policy", o->policy, "auto, deadline, fifo or other")->capture_default_str();
-  cmd->add_option("--robot", o->robot, "dd-vel, dd-accel or car")->capture_default_str();
   cmd->add_option("--scene", o->scene, "meandros, labyrinth or rooms")->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the planner and of the changing world")
       ->capture_default_str();
   cmd->add_option("--report", o->report, "Write the JSON report here");
-  cmd->add_option("--max-edges", o->max_edges,
-                  "Edge pool of the planner (default: 400 per ms of budget)");
   cmd->add_flag(
       "--static", o->static_world,
       "Keep the map and the target (the scene's goal) fixed: shows what retainment keeps");

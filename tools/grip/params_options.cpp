@@ -1,0 +1,144 @@
+#include "params_options.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <cstdint>
+
+#include "dds_config.hpp"
+
+namespace grip::tools {
+
+void add_vehicle_options(CLI::App& command, ParamsOptions& o) {
+  command.add_option("--params", o.file,
+                     "The vehicle's parameter file (YAML: vehicle, planner, sensor, exploration, "
+                     "link, runtime; `grip params` prints one)");
+  command.add_option("--robot", o.robot,
+                     "A built-in vehicle instead: dd-vel, dd-accel or car (default: " +
+                         o.default_robot + ")");
+}
+
+void add_domain_option(CLI::App& command, ParamsOptions& o) {
+  command.add_option("--domain", o.domain, "DDS domain id (default: the parameters' link.domain)")
+      ->check(CLI::Range(0U, kMaxDomainId));
+}
+
+void add_lockstep_options(CLI::App& command, ParamsOptions& o) {
+  command
+      .add_option("--lockstep-edges", o.lockstep_edges,
+                  "Edges the planner grows per cycle when the vehicle runs in lockstep "
+                  "(planner.lockstep_edges)")
+      ->check(CLI::Range(1U, 200'000U));
+  command.add_flag("--no-safety", o.no_safety,
+                   "The paper's ablation: plans are not checked for a safe braking maneuver");
+}
+
+void add_cycle_options(CLI::App& command, ParamsOptions& o) {
+  command.add_option("--period-ms", o.period_ms, "Cycle T in vehicle time [ms] (planner.cycle_s)");
+  command.add_option("--budget-ms", o.budget_ms,
+                     "Planning time per cycle in vehicle time [ms] (planner.budget_s)");
+  command.add_option("--margin-ms", o.margin_ms,
+                     "Growth stops this long before the deadline [ms]; < 0: a fifth of the "
+                     "budget (planner.margin_s)");
+  command.add_option("--max-edges", o.max_edges,
+                     "Edge pool; 0: 400 per ms of budget (planner.max_edges)");
+  command.add_option("--policy", o.policy,
+                     "auto, deadline, fifo or other (runtime.policy)");
+  command.add_option("--lease-ms", o.lease_ms,
+                     "Liveliness lease of every endpoint [ms] (link.liveliness_lease_s)");
+}
+
+namespace {
+
+Result<params::GripParams> base_params(const ParamsOptions& o) {
+  if (o.file.empty()) {
+    auto kind = vehicle_kind_from_name(o.robot.value_or(o.default_robot));
+    if (!kind) return kind.error();
+    return params::default_params(*kind);
+  }
+  auto loaded = params::load_params(o.file);
+  if (!loaded) return loaded.error();
+  // A file the parameters name is found beside them, as with any configuration file.
+  std::string& dds_config = loaded->link.dds_config;
+  if (!dds_config.empty() && dds_config.front() != '/') {
+    dds_config = (std::filesystem::path(o.file).parent_path() / dds_config).string();
+  }
+  if (o.robot) {
+    const std::string_view model = vehicle_name(vehicle_kind(loaded->vehicle));
+    if (*o.robot != model) {
+      return invalid_argument("--robot " + *o.robot + " contradicts " + o.file +
+                              ", whose vehicle.model is " + std::string(model) +
+                              ": give one of them");
+    }
+  }
+  return loaded;
+}
+
+}  // namespace
+
+Result<params::GripParams> effective_params(const ParamsOptions& o) {
+  auto p = base_params(o);
+  if (!p) return p.error();
+  if (o.domain) p->link.domain = *o.domain;
+  if (o.period_ms) p->planner.cycle_s = *o.period_ms / 1e3;
+  if (o.budget_ms) p->planner.budget_s = *o.budget_ms / 1e3;
+  if (o.margin_ms) p->planner.margin_s = *o.margin_ms < 0.0 ? -1.0 : *o.margin_ms / 1e3;
+  if (o.max_edges) p->planner.max_edges = *o.max_edges;
+  if (o.lockstep_edges) p->planner.lockstep_edges = *o.lockstep_edges;
+  if (o.no_safety) p->planner.safety = false;
+  if (o.lease_ms) p->link.liveliness_lease_s = *o.lease_ms / 1e3;
+  if (o.policy) {
+    auto policy = platform::parse_policy_request(*o.policy);
+    if (!policy) return policy.error();
+    p->runtime.policy = *policy;
+  }
+  if (Status s = params::validate(*p); !s) {
+    return invalid_argument(s.error().message + (o.file.empty() ? "" : " (" + o.file + ")"));
+  }
+  return p;
+}
+
+namespace {
+std::chrono::nanoseconds ns_of(double seconds) {
+  return std::chrono::nanoseconds(static_cast<std::int64_t>(seconds * 1e9));
+}
+}  // namespace
+
+rt::dds::PlannerParticipantConfig planner_participant_config(const params::GripParams& p) {
+  rt::dds::PlannerParticipantConfig c;
+  c.domain = p.link.domain;
+  c.vehicle = p.vehicle;
+  c.cycle_s = p.planner.cycle_s;
+  c.budget_s = p.planner.budget_s;
+  c.margin_s = p.planner.margin_s;
+  c.max_edges = p.planner.max_edges;
+  c.lockstep_edges = p.planner.lockstep_edges;
+  c.tuning = p.planner.tuning;
+  c.max_map_cells = p.planner.max_map_cells;
+  c.no_safety = !p.planner.safety;
+  // The path weight's d_max is what the sensor sees, unless the parameters say otherwise.
+  c.sensing_radius_m = p.exploration.sensing_radius_m > 0.0 ? p.exploration.sensing_radius_m
+                                                            : p.sensor.range_m;
+  c.frontier = p.exploration.frontier;
+  c.frontier_give_up_s = p.exploration.give_up_s;
+  c.target_refresh_cycles = p.exploration.target_refresh_cycles;
+  c.liveliness_lease = ns_of(p.link.liveliness_lease_s);
+  c.policy = p.runtime.policy;
+  c.fifo_priority = p.runtime.fifo_priority;
+  c.cpu = p.runtime.cpu;
+  c.lock_memory = p.runtime.lock_memory;
+  return c;
+}
+
+sim::SimRunConfig sim_run_config(const params::GripParams& p) {
+  sim::SimRunConfig c;
+  c.domain = p.link.domain;
+  c.vehicle = p.vehicle;
+  c.cycle_s = p.planner.cycle_s;
+  c.sensor_radius_m = p.sensor.range_m;
+  c.sensor_rays = p.sensor.rays;
+  c.stuck_after_s = p.exploration.stuck_after_s;
+  c.liveliness_lease = ns_of(p.link.liveliness_lease_s);
+  return c;
+}
+
+}  // namespace grip::tools
