@@ -1,6 +1,7 @@
 # What `cmake --install` puts where (GNU directories), and the Debian packages CPack makes of it:
 #   runtime     (package grip):     bin/grip, its private library in lib/grip, the man page,
 #                                   share/grip/{idl,dds}: the contract and the loopback config,
+#                                   share/grip/vehicles: example parameter files,
 #                                   the grip-planner systemd unit and its options' example;
 #   development (package grip-dev): the planner core (grip::core, grip::base), its headers and
 #                                   the CMake package, for a vehicle team that embeds the planner
@@ -14,6 +15,11 @@ install(FILES ${GRIP_IDL_FILES} ${PROJECT_SOURCE_DIR}/idl/README.md
         DESTINATION ${CMAKE_INSTALL_DATADIR}/grip/idl COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/platform/dds/config/loopback.xml
         DESTINATION ${CMAKE_INSTALL_DATADIR}/grip/dds COMPONENT runtime)
+# Parameter files of the built-in vehicles (`grip params --robot R` prints them) and of a car
+# that is not the paper's, for a new vehicle's file to start from.
+file(GLOB GRIP_VEHICLE_FILES ${PROJECT_SOURCE_DIR}/tools/params/examples/*.yaml)
+install(FILES ${GRIP_VEHICLE_FILES} DESTINATION ${CMAKE_INSTALL_DATADIR}/grip/vehicles
+        COMPONENT runtime)
 # The unit names /usr/bin/grip: the Debian package's prefix.
 install(FILES ${PROJECT_SOURCE_DIR}/platform/systemd/grip-planner.service
         DESTINATION lib/systemd/system COMPONENT runtime)

@@ -14,6 +14,7 @@ set(prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 
 foreach(file bin/grip share/grip/dds/loopback.xml share/grip/idl/plan.idl
+             share/grip/vehicles/car.yaml share/grip/vehicles/compact-car.yaml
              share/man/man1/grip.1.gz include/grip/planner/planner.hpp
              include/grip/common/result.hpp lib/cmake/grip/gripConfig.cmake)
   if(NOT EXISTS ${prefix}/${file})
@@ -30,6 +31,8 @@ if(NOT out MATCHES "^grip [0-9]+\\.[0-9]+\\.[0-9]+ \\(revision [^)]+\\)")
   message(FATAL_ERROR "grip --version printed: ${out}")
 endif()
 run(${prefix}/bin/grip plan --scene meandros --robot dd-vel --seed 1)
+# The installed example parameter files read back.
+run(${prefix}/bin/grip params --params ${prefix}/share/grip/vehicles/compact-car.yaml)
 
 run(${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR}/consumer -G Ninja
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix})

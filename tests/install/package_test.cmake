@@ -29,6 +29,7 @@ expect("grip's files" "${out}" "\\./usr/lib/grip/libgrip_alloc_counter\\.so\n")
 expect("grip's files" "${out}" "\\./usr/share/man/man1/grip\\.1\\.gz\n")
 expect("grip's files" "${out}" "\\./usr/lib/systemd/system/grip-planner\\.service\n")
 expect("grip's files" "${out}" "\\./usr/share/grip/systemd/grip-planner\\.env\n")
+expect("grip's files" "${out}" "\\./usr/share/grip/vehicles/car\\.yaml\n")
 
 run(dpkg-deb --field ${development} Depends)
 expect("grip-dev's dependencies" "${out}" "libeigen3-dev")

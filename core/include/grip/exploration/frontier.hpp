@@ -73,6 +73,7 @@ struct FrontierConfig {
   // diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0 (or any of them not
   // finite), min_group_cells 0.
   Status validate(double resolution_m) const;
+  bool operator==(const FrontierConfig&) const = default;
 };
 
 struct FrontierGroup {

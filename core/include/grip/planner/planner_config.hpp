@@ -95,6 +95,7 @@ struct GripTuning {
     config.min_plan_duration_s = min_plan_duration_s;
     config.max_plan_duration_s = max_plan_duration_s;
   }
+  bool operator==(const GripTuning&) const = default;
 };
 
 }  // namespace grip

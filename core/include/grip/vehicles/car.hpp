@@ -31,6 +31,7 @@ struct CarParams {
   double velocity_target_share = 0.5;
 
   Status validate() const;
+  bool operator==(const CarParams&) const = default;
 };
 
 class Car {

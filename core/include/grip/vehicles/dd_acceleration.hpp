@@ -27,6 +27,7 @@ struct DdAccelerationParams {
   double velocity_target_share = 0.5;
 
   Status validate() const;
+  bool operator==(const DdAccelerationParams&) const = default;
 };
 
 class DdAcceleration {

@@ -23,6 +23,7 @@ struct DdVelocityParams {
   double top_speed_share = 0.8;
 
   Status validate() const;
+  bool operator==(const DdVelocityParams&) const = default;
 };
 
 class DdVelocity {

@@ -22,6 +22,7 @@ struct Footprint {
   Footprint inflated(double margin_m) const noexcept {
     return Footprint{front_m + margin_m, rear_m + margin_m, half_width_m + margin_m};
   }
+  bool operator==(const Footprint&) const = default;
 };
 
 }  // namespace grip

@@ -28,11 +28,15 @@ struct PlannerParams {
   std::uint32_t lockstep_edges = 1000;
   std::uint32_t max_map_cells = 1U << 22;
   bool safety = true;  // false: the paper's ablation without the contingency check
+
+  bool operator==(const PlannerParams&) const = default;
 };
 
 struct SensorParams {
   double range_m = 0.0;    // 0: "auto", a tenth of the map's larger side
   std::uint32_t rays = 0;  // 0: "auto", enough that no cell in range slips between two rays
+
+  bool operator==(const SensorParams&) const = default;
 };
 
 struct ExplorationParams {
@@ -42,14 +46,22 @@ struct ExplorationParams {
   double give_up_s = 60.0;  // a frontier target not approached for this long is given up
   std::uint32_t target_refresh_cycles = 5;
   double stuck_after_s = 300.0;  // the simulator: no coverage or progress for this long
+
+  bool operator==(const ExplorationParams&) const = default;
 };
 
+// The largest DDS domain id: the RTPS port mapping (7400 + 250 x domain + ...) leaves UDP ports
+// for domains 0 to 232 (the `grip` command's --domain options stop there too).
+inline constexpr unsigned kMaxDomainId = 232;
+
 struct LinkParams {
-  unsigned domain = 0;
+  unsigned domain = 0;     // 0..kMaxDomainId
   std::string dds_config;  // a Cyclone XML file; empty: the loopback-only built-in
   // Prepended to every topic name, so that two vehicles can share a domain; empty: none.
   std::string topic_prefix;
   double liveliness_lease_s = 0.5;
+
+  bool operator==(const LinkParams&) const = default;
 };
 
 struct RuntimeParams {
@@ -57,6 +69,8 @@ struct RuntimeParams {
   int fifo_priority = 80;  // SCHED_FIFO, 1..99
   int cpu = -1;            // the planning thread's CPU under fifo or other; -1: "any"
   bool lock_memory = true;
+
+  bool operator==(const RuntimeParams&) const = default;
 };
 
 struct GripParams {
@@ -66,6 +80,9 @@ struct GripParams {
   ExplorationParams exploration;
   LinkParams link;
   RuntimeParams runtime;
+
+  // Field by field (doubles by value): what a file read back from to_yaml() compares equal to.
+  bool operator==(const GripParams&) const = default;
 };
 
 // The built-in vehicle of `kind` (the paper's), with every other section at its default.
