@@ -199,12 +199,13 @@ TEST(ExploreCommand, AVehicleDefinedOnlyInAParameterFileExploresWithinItsLimits)
   {
     std::ofstream out(params);
     out << "vehicle:\n  model: car\n  max_speed_m_s: 2.0\n  braking_decel_m_s2: 1.2\n"
-           "  wheelbase_m: 0.9\n  footprint: {front_m: 0.95, rear_m: 0.25, half_width_m: 0.3}\n";
+           "  wheelbase_m: 0.9\n  footprint: {front_m: 0.95, rear_m: 0.25, half_width_m: 0.3}\n"
+           "sensor:\n  range_m: 3.0\n";  // the default, a tenth of 10 m, ends at its bonnet
   }
   const std::string report = ::testing::TempDir() + "grip-compact-car.json";
-  const CommandRun r = run("explore --map " + write_small_map() + " --params " + params +
-                           " --lockstep --seed 1 --max-sim-time 600 --domain 76 --report " +
-                           report);
+  const CommandRun r =
+      run("explore --map " + write_small_map() + " --params " + params +
+          " --lockstep --seed 1 --max-sim-time 600 --domain 76 --report " + report);
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = read_json(report);
   expect_a_sane_run(j, r.output);

@@ -44,7 +44,7 @@ struct ExploreOptions {
   std::string scene = "rooms";
   std::string map;
   std::string start;
-  ParamsOptions params{.default_robot = "dd-vel"};
+  ParamsOptions params{"dd-vel"};
   std::uint64_t seed = 1;
   double time_scale = kDefaultTimeScale;
   double max_sim_time_s = kDefaultMaxSimTimeS;
@@ -95,8 +95,8 @@ Result<World> load_world(const ExploreOptions& o, const params::GripParams& p) {
   return World{o.map, std::move(loaded->grid), start};
 }
 
-nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
-                           const World& world, const sim::SimRunReport& r) {
+nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p, const World& world,
+                           const sim::SimRunReport& r) {
   nlohmann::json j;
   j["result"] = r.result;
   if (!r.reason.empty()) j["reason"] = r.reason;
@@ -152,7 +152,7 @@ nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
   // The velocity profile of the paper's Fig. 9, one sample per simulation tick, and how much of
   // the time the vehicle went near its maximum speed (`grip render --speed-profile` draws it).
   nlohmann::json profile = nlohmann::json::array();
-  for (const auto& p : r.speed_profile) profile.push_back({p[0], p[1]});
+  for (const auto& sample : r.speed_profile) profile.push_back({sample[0], sample[1]});
   j["speed_profile"] = profile;
   if (r.max_speed_m_s > 0.0) {
     const SpeedProfileSummary speed = summarize_speed_profile(r.speed_profile, r.max_speed_m_s);
@@ -197,8 +197,8 @@ Status draw_run(const World& world, const sim::SimRunReport& r,
 }
 
 int finish(const ExploreOptions& o, const params::GripParams& p, const World& world,
-           const Result<sim::SimRunReport>& run,
-           const rt::dds::PlannerTreePicture& tree, const char* command) {
+           const Result<sim::SimRunReport>& run, const rt::dds::PlannerTreePicture& tree,
+           const char* command) {
   if (!run) {
     std::cerr << command << ": " << run.error().message << "\n";
     return 1;

@@ -1,8 +1,8 @@
 #include "params_options.hpp"
 
 #include <chrono>
-#include <filesystem>
 #include <cstdint>
+#include <filesystem>
 
 #include "dds_config.hpp"
 
@@ -12,9 +12,9 @@ void add_vehicle_options(CLI::App& command, ParamsOptions& o) {
   command.add_option("--params", o.file,
                      "The vehicle's parameter file (YAML: vehicle, planner, sensor, exploration, "
                      "link, runtime; `grip params` prints one)");
-  command.add_option("--robot", o.robot,
-                     "A built-in vehicle instead: dd-vel, dd-accel or car (default: " +
-                         o.default_robot + ")");
+  command.add_option(
+      "--robot", o.robot,
+      "A built-in vehicle instead: dd-vel, dd-accel or car (default: " + o.default_robot + ")");
 }
 
 void add_domain_option(CLI::App& command, ParamsOptions& o) {
@@ -41,8 +41,7 @@ void add_cycle_options(CLI::App& command, ParamsOptions& o) {
                      "budget (planner.margin_s)");
   command.add_option("--max-edges", o.max_edges,
                      "Edge pool; 0: 400 per ms of budget (planner.max_edges)");
-  command.add_option("--policy", o.policy,
-                     "auto, deadline, fifo or other (runtime.policy)");
+  command.add_option("--policy", o.policy, "auto, deadline, fifo or other (runtime.policy)");
   command.add_option("--lease-ms", o.lease_ms,
                      "Liveliness lease of every endpoint [ms] (link.liveliness_lease_s)");
 }
@@ -116,8 +115,8 @@ rt::dds::PlannerParticipantConfig planner_participant_config(const params::GripP
   c.max_map_cells = p.planner.max_map_cells;
   c.no_safety = !p.planner.safety;
   // The path weight's d_max is what the sensor sees, unless the parameters say otherwise.
-  c.sensing_radius_m = p.exploration.sensing_radius_m > 0.0 ? p.exploration.sensing_radius_m
-                                                            : p.sensor.range_m;
+  c.sensing_radius_m =
+      p.exploration.sensing_radius_m > 0.0 ? p.exploration.sensing_radius_m : p.sensor.range_m;
   c.frontier = p.exploration.frontier;
   c.frontier_give_up_s = p.exploration.give_up_s;
   c.target_refresh_cycles = p.exploration.target_refresh_cycles;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "grip/common/result.hpp"
 #include "grip/params/params.hpp"
@@ -16,9 +17,11 @@
 namespace grip::tools {
 
 struct ParamsOptions {
+  explicit ParamsOptions(std::string built_in) : default_robot(std::move(built_in)) {}
+
+  std::string default_robot;         // the built-in vehicle without --params or --robot
   std::string file;                  // --params
   std::optional<std::string> robot;  // --robot
-  std::string default_robot;         // the built-in vehicle without either
   // Overrides; unset: the parameters' value.
   std::optional<unsigned> domain;
   std::optional<double> period_ms;

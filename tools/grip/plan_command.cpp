@@ -14,7 +14,7 @@ namespace grip::tools {
 namespace {
 struct PlanOptions {
   std::string scene = "meandros";
-  ParamsOptions params{.default_robot = "dd-accel"};
+  ParamsOptions params{"dd-accel"};
   std::string planner = "grip";
   std::uint64_t seed = 1;
   std::uint64_t max_edges = 100'000;
@@ -96,9 +96,12 @@ void register_plan_command(CLI::App& app) {
   cmd->add_option("--max-edges", o->max_edges, "Stop after this many edges")->capture_default_str();
   cmd->add_option("--time-limit", o->time_limit_s, "Stop after this many seconds (0: none)")
       ->check(CLI::Range(0.0, 86400.0));
-  cmd->add_option("--score-base-a", o->score_base_a, "GRIP's a > 1 in s(e) = a^p(e) rho(e, F)")
-  cmd->add_option("--min-plan-duration", o->min_plan_duration_s, "Shortest random plan [s]")
-  cmd->add_option("--max-plan-duration", o->max_plan_duration_s, "Longest random plan [s]")
+  cmd->add_option("--score-base-a", o->score_base_a,
+                  "GRIP's a > 1 in s(e) = a^p(e) rho(e, F) (planner.score_base_a)");
+  cmd->add_option("--min-plan-duration", o->min_plan_duration_s,
+                  "Shortest random plan [s] (planner.min_plan_duration_s)");
+  cmd->add_option("--max-plan-duration", o->max_plan_duration_s,
+                  "Longest random plan [s] (planner.max_plan_duration_s)");
   cmd->add_option("--rho-clearance", o->rho_clearance_m,
                   "rho_A* is computed for a disk of this radius [m]")
       ->capture_default_str();

@@ -31,7 +31,7 @@ namespace grip::tools {
 namespace {
 
 struct PlannerOptions {
-  ParamsOptions params{.default_robot = "car"};
+  ParamsOptions params{"car"};
   std::string dds_config;
   double duration_s = 0.0;
   double startup_timeout_s = 0.0;

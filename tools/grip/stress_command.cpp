@@ -43,13 +43,13 @@ namespace {
 
 struct StressOptions {
   double duration_s = 10.0;
-  ParamsOptions params{.default_robot = "car"};  // the vehicle, the cycle and the policy
+  ParamsOptions params{"car"};  // the vehicle, the cycle and the policy
   std::string load = "none";
   std::string scene = "rooms";
   std::uint64_t seed = 1;
   std::string report;
   double max_miss_rate = -1.0;
-  bool static_world = false;    // no map or target changes: shows what retainment keeps
+  bool static_world = false;  // no map or target changes: shows what retainment keeps
 };
 
 // A change of the map: a rectangle of cells set to one value (as a map update patch).
