@@ -14,11 +14,13 @@ inline const std::string kGrip = GRIP_BINARY_DIR "/bin/grip";
 
 struct CommandRun {
   int status;          // the exit status, -1 when it did not exit normally
-  std::string output;  // stdout and stderr
+  std::string output;  // stdout and stderr (see run_grip's streams)
 };
 
-inline CommandRun run_grip(const std::string& arguments) {
-  const std::string command = kGrip + " " + arguments + " 2>&1";
+// `streams` redirects the command's output: the default captures stdout and stderr; "2>/dev/null"
+// stdout alone; "2>&1 >/dev/null" stderr alone.
+inline CommandRun run_grip(const std::string& arguments, const std::string& streams = "2>&1") {
+  const std::string command = kGrip + " " + arguments + " " + streams;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return {-1, "popen failed"};
   std::string output;
