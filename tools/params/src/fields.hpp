@@ -28,7 +28,7 @@ struct Field {
   std::string_view comment;                  // one line for the file's reader; empty: none
   // The value the word "auto" stands for (written as "auto" when the value is exactly this);
   // nullopt: the key takes no "auto".
-  std::optional<double> auto_value;
+  std::optional<double> auto_value = std::nullopt;
 };
 
 struct Section {

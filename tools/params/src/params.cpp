@@ -23,19 +23,21 @@ class Rules {
   void require(bool ok, const T& value, const std::string& rule) {
     if (ok || error_) return;
     const std::string key = key_of(params_, &value);
+    GRIP_ASSERT(!key.empty());  // every rule is about a value of the file's tables
     error_ = RangeError{key, key + " must be " + rule + " (got " + text(value) + ")"};
   }
   // A check of core (a model's, the planner's, the frontier's), whose message starts with the
-  // field's name after `core_prefix`: that name becomes the key after `key_prefix`.
-  void require(const Status& core, std::string_view core_prefix, std::string_view key_prefix) {
+  // field's name after `core_prefix` ("car.", "frontier: "): the key is that name after
+  // `section` ("vehicle", "exploration.frontier"). A message of another form is the section's.
+  void require(const Status& core, std::string_view core_prefix, std::string_view section) {
     if (core.ok() || error_) return;
-    std::string message = core.error().message;
-    if (message.starts_with(core_prefix)) {
-      message = std::string(key_prefix) + message.substr(core_prefix.size());
-    } else {
-      message = std::string(key_prefix) + " " + message;
+    const std::string& message = core.error().message;
+    if (!message.starts_with(core_prefix)) {
+      error_ = RangeError{std::string(section), std::string(section) + ": " + message};
+      return;
     }
-    error_ = RangeError{message.substr(0, message.find(' ')), message};
+    const std::string keyed = std::string(section) + "." + message.substr(core_prefix.size());
+    error_ = RangeError{keyed.substr(0, keyed.find(' ')), keyed};
   }
   bool failed() const { return error_.has_value(); }
   std::optional<RangeError> result() && { return std::move(error_); }
@@ -66,7 +68,7 @@ void check_planner(const PlannerParams& p, Rules& r) {
   PlannerConfig config;
   config.integration_step_s = integration_step_for_cycle(p.cycle_s);
   p.tuning.apply_to(config);
-  r.require(config.validate(), "planner.", "planner.");
+  r.require(config.validate(), "planner.", "planner");
   r.require(p.max_edges == 0 || p.max_edges >= 100, p.max_edges, "auto (0) or at least 100");
   r.require(p.lockstep_edges >= 1 && p.lockstep_edges <= 200'000, p.lockstep_edges,
             "in [1, 200000]");
@@ -82,7 +84,7 @@ void check_exploration(const SensorParams& s, const ExplorationParams& e, Rules&
             "finite and >= 0 (0: auto)");
   // The map's resolution is not known here: FrontierMap::create checks the approach range
   // against clearance_m plus a cell's diagonal once it is; this is that check for a cell of 0.
-  r.require(e.frontier.validate(0.0), "frontier: ", "exploration.frontier.");
+  r.require(e.frontier.validate(0.0), "frontier: ", "exploration.frontier");
   r.require(finite_positive(e.give_up_s), e.give_up_s, "finite and > 0");
   r.require(e.target_refresh_cycles >= 1, e.target_refresh_cycles, "at least 1");
   r.require(finite_positive(e.stuck_after_s), e.stuck_after_s, "finite and > 0");
@@ -116,7 +118,7 @@ void check_link_and_runtime(const LinkParams& l, const RuntimeParams& rt, Rules&
 std::optional<RangeError> first_range_error(const GripParams& params) {
   Rules rules(params);
   const std::string model = std::string(vehicle_name(vehicle_kind(params.vehicle))) + ".";
-  rules.require(grip::validate(params.vehicle), model, "vehicle.");
+  rules.require(grip::validate(params.vehicle), model, "vehicle");
   check_planner(params.planner, rules);
   check_exploration(params.sensor, params.exploration, rules);
   check_link_and_runtime(params.link, params.runtime, rules);

@@ -5,10 +5,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <climits>
 #include <cmath>
 #include <map>
+#include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,10 +43,17 @@ std::string what_it_is(const YAML::Node& node) {
   }
 }
 
+// YAML allows a number a leading '+', std::from_chars does not.
+std::string_view without_plus(std::string_view text) {
+  const bool plus = text.size() > 1 && text[0] == '+' && text[1] != '+' && text[1] != '-';
+  return plus ? text.substr(1) : text;
+}
+
 // The whole of `text` as a number; nullopt when it is not one. YAML's own spellings of the
-// non-finite values (.inf, .nan) come back too, so that they are refused as such.
+// non-finite values (.inf, .nan) and numbers beyond a double come back too, as non-finite
+// values, so that they are refused as such.
 std::optional<double> number_in(std::string_view text) {
-  const std::string_view digits = text.starts_with('+') ? text.substr(1) : text;
+  const std::string_view digits = without_plus(text);
   double value = 0.0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (end == digits.data() + digits.size() && !digits.empty()) {
@@ -58,7 +68,7 @@ std::optional<double> number_in(std::string_view text) {
 }
 
 std::optional<long long> whole_number_in(std::string_view text) {
-  const std::string_view digits = text.starts_with('+') ? text.substr(1) : text;
+  const std::string_view digits = without_plus(text);
   long long value = 0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (ec != std::errc() || end != digits.data() + digits.size() || digits.empty()) {
@@ -151,8 +161,9 @@ class Reader {
     }
     const auto vehicle = std::find_if(sections.begin(), sections.end(),
                                       [](const auto& entry) { return entry.first == "vehicle"; });
-    if (vehicle == sections.end())
+    if (vehicle == sections.end()) {
       return error_at(start, "vehicle.model is required (" + models + ")");
+    }
     const YAML::Node& section = vehicle->second;
     if (!section.IsNull() && !section.IsMap()) {
       return error_at(section.Mark(), "vehicle: expected a mapping, got " + what_it_is(section));

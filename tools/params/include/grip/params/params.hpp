@@ -89,16 +89,23 @@ struct GripParams {
 GripParams default_params(VehicleKind kind);
 
 // A parameter file. Errors (kInvalidArgument), each naming "file:line:column", the key and what
-// is allowed: malformed YAML, an unknown key, a missing vehicle.model, a wrong type, a value out
-// of range. Keys left out keep the defaults of vehicle.model.
+// is allowed: malformed YAML, an unknown key, a duplicated key, a missing vehicle.model, a wrong
+// type (a non-finite number too), a value out of range (validate()'s rules, at the value's place
+// when the file gives it, else at its section's). Keys left out keep the defaults of
+// vehicle.model. A path that cannot be opened, is not a regular file (a directory, /dev/zero, a
+// FIFO: refused before a byte is read) or holds more than 1 MiB is refused naming the path.
 Result<GripParams> load_params(const std::string& path);
 // The same from text; `name` stands for the file in messages.
 Result<GripParams> parse_params(std::string_view text, std::string_view name);
 
-// Every parameter, as YAML that parse_params reads back to the same values.
+// Every parameter in a fixed order, commented, as YAML that parse_params reads back to the same
+// values (numbers in their shortest exact text; "auto" for a derived value).
 std::string to_yaml(const GripParams& params);
 
-// Ok, or the first value out of range, by its key ("planner.budget_s must be ...").
+// Ok, or the first value out of range, by its key ("planner.budget_s must be in (0, cycle_s =
+// 0.05) (got 0.06)"): the rules parse_params applies, for a set built in code. The frontier's
+// approach range is checked against a cell of 0 m: FrontierMap::create checks it again with the
+// map's resolution.
 Status validate(const GripParams& params);
 
 }  // namespace grip::params
