@@ -5,38 +5,14 @@
 
 #include <string>
 
+#include "damaged_text.hpp"
 #include "grip/common/random.hpp"
 #include "grip/sim/map_file.hpp"
 
 namespace grip::sim {
 namespace {
 
-// One random edit: flip a byte, delete a span, duplicate a span, or cut the tail.
-std::string mutate(const std::string& good, Random& rng) {
-  std::string s = good;
-  const auto pick = [&](std::size_t n) {
-    return static_cast<std::size_t>(rng.uniform(0.0, static_cast<double>(n)));
-  };
-  const int edits = 1 + static_cast<int>(pick(3));
-  for (int e = 0; e < edits && !s.empty(); ++e) {
-    const std::size_t at = pick(s.size());
-    switch (pick(4)) {
-      case 0:
-        s[at] = static_cast<char>(pick(256));
-        break;
-      case 1:
-        s.erase(at, 1 + pick(8));
-        break;
-      case 2:
-        s.insert(at, s.substr(at, 1 + pick(8)));
-        break;
-      default:
-        s.resize(at);
-        break;
-    }
-  }
-  return s;
-}
+using grip::testing::damaged;
 
 TEST(MapParserFuzzTest, DamagedMovingAiMapsParseOrFailNamingTheFile) {
   const std::string good = "type octile\nheight 4\nwidth 6\nmap\n@@@@@@\n@..G.@\n@.S.T@\n@@@@@@\n";
@@ -44,7 +20,7 @@ TEST(MapParserFuzzTest, DamagedMovingAiMapsParseOrFailNamingTheFile) {
   Random rng(11);
   int failures = 0;
   for (int i = 0; i < 3000; ++i) {
-    const std::string text = mutate(good, rng);
+    const std::string text = damaged(good, rng);
     auto r = parse_movingai_map(text, "fuzz.map");
     if (!r.ok()) {
       ++failures;
@@ -64,7 +40,7 @@ TEST(MapParserFuzzTest, DamagedPgmImagesParseOrFailNamingTheFile) {
   for (const std::string& good : {binary, ascii}) {
     ASSERT_TRUE(parse_pgm(good, "fuzz.pgm").ok());
     for (int i = 0; i < 3000; ++i) {
-      const std::string bytes = mutate(good, rng);
+      const std::string bytes = damaged(good, rng);
       auto r = parse_pgm(bytes, "fuzz.pgm");
       if (!r.ok()) {
         ASSERT_EQ(r.error().message.rfind("fuzz.pgm:", 0), 0U) << r.error().message;
