@@ -134,8 +134,10 @@ class Reader {
     if (!map.IsMap()) {
       return error_at(map.Mark(), path + ": expected a mapping, got " + what_it_is(map));
     }
-    for (auto it = map.begin(); it != map.end(); ++it) {
-      const YAML::Node& key_node = it->first;
+    // yaml-cpp's iterators hand out their pairs by value: the nodes are copies (handles).
+    for (const auto& pair : map) {
+      const YAML::Node key_node = pair.first;
+      const YAML::Node value = pair.second;
       if (!key_node.IsScalar()) {
         return error_at(key_node.Mark(), (path.empty() ? "" : path + ": ") +
                                              "expected a key, got " + what_it_is(key_node));
@@ -147,9 +149,9 @@ class Reader {
                                              std::to_string(first->second.line + 1) + ")");
       }
       if (!known(key)) return error_at(key_node.Mark(), full + ": unknown key (" + allowed + ")");
-      entries.emplace_back(key, it->second);
+      entries.emplace_back(key, value);
       // A scalar's own mark; a mapping's (and a key with nothing after it) is its key's.
-      marks_[full] = it->second.IsScalar() ? it->second.Mark() : key_node.Mark();
+      marks_[full] = value.IsScalar() ? value.Mark() : key_node.Mark();
     }
     return std::nullopt;
   }
