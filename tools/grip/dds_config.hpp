@@ -10,6 +10,7 @@
 #include <string>
 
 #include "grip/common/result.hpp"
+#include "grip/params/params.hpp"
 #include "grip/platform/dds/participant.hpp"
 
 namespace grip::tools {
@@ -18,9 +19,7 @@ namespace grip::tools {
 // loopback configuration). Refuses a configuration file that cannot be read, naming it.
 Result<std::string> choose_dds_config(const std::string& dds_config_option);
 
-// The largest DDS domain id: the RTPS port mapping (7400 + 250 x domain + ...) leaves UDP ports
-// for domains 0 to 232.
-inline constexpr std::uint32_t kMaxDomainId = 232;
+using params::kMaxDomainId;
 
 // The --dds-config option of a command on a real link.
 void add_dds_config_option(CLI::App& command, std::string& dds_config_option);

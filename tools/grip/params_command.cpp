@@ -8,12 +8,9 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "dds_config.hpp"
 #include "params_options.hpp"
 
 namespace grip::tools {
-
-static_assert(params::kMaxDomainId == kMaxDomainId, "one end of the RTPS port mapping");
 
 void register_params_command(CLI::App& app) {
   auto o = std::make_shared<ParamsOptions>("dd-vel");

@@ -108,7 +108,9 @@ void check_link_and_runtime(const LinkParams& l, const RuntimeParams& rt, Rules&
             "at most " + std::to_string(kMaxDomainId) + ", where the RTPS port mapping ends");
   r.require(is_topic_prefix(l.topic_prefix), l.topic_prefix,
             "empty or up to 64 of [A-Za-z0-9_], starting with a letter");
-  r.require(finite_positive(l.liveliness_lease_s), l.liveliness_lease_s, "finite and > 0");
+  // Below 10 ms a lease expires between two heartbeats of a loaded machine.
+  r.require(std::isfinite(l.liveliness_lease_s) && l.liveliness_lease_s >= 0.01,
+            l.liveliness_lease_s, "at least 0.01 s");
   r.require(rt.fifo_priority >= 1 && rt.fifo_priority <= 99, rt.fifo_priority, "in [1, 99]");
   r.require(rt.cpu >= -1 && rt.cpu <= 1023, rt.cpu, "auto (-1) or in [0, 1023]");
 }
