@@ -147,6 +147,11 @@ TEST(ExploreCommand, ExploresASmallMapWithoutCollisionAndWritesReportAndPicture)
   png.read(signature, 8);
   EXPECT_EQ(std::string(signature + 1, 3), "PNG");
   expect_a_cycle_trace(trace, j.at("cycles").get<std::uint64_t>());
+  // What produced it: the parameters in force and what the machine granted the planning thread.
+  EXPECT_NE(j.at("parameters").get<std::string>().find("model: dd-vel"), std::string::npos);
+  const std::string policy = j.at("scheduling").at("policy");
+  EXPECT_TRUE(policy == "deadline" || policy == "fifo" || policy == "other") << policy;
+  EXPECT_TRUE(j.at("scheduling").contains("policy_fallback_reason"));
 }
 
 // At time scale 10, as in the example: the planner's wall-clock budget is 2.5 ms.

@@ -196,9 +196,10 @@ Status draw_run(const World& world, const sim::SimRunReport& r,
   return canvas->write_png(path);
 }
 
+// `planner`: the in-process planner's report, if it ran and ended well.
 int finish(const ExploreOptions& o, const params::GripParams& p, const World& world,
            const Result<sim::SimRunReport>& run, const rt::dds::PlannerTreePicture& tree,
-           const char* command) {
+           const rt::dds::PlannerParticipantReport* planner, const char* command) {
   if (!run) {
     std::cerr << command << ": " << run.error().message << "\n";
     return 1;
@@ -218,7 +219,13 @@ int finish(const ExploreOptions& o, const params::GripParams& p, const World& wo
                                     : "")
             << "), contingency stops " << r.contingency_stops << "\n";
   if (!o.report.empty()) {
-    if (!write_report(command, o.report, report_json(o, p, world, r), 1)) return 1;
+    nlohmann::json j = report_json(o, p, world, r);
+    if (planner != nullptr && !o.lockstep) {  // what the machine granted the real-time run
+      j["scheduling"] = {{"policy", planner->policy},
+                         {"policy_fallback_reason", planner->policy_fallback},
+                         {"publish_thread_policy", planner->publish_policy}};
+    }
+    if (!write_report(command, o.report, std::move(j), 1)) return 1;
   }
   if (!o.image.empty()) {
     if (Status s = draw_run(world, r, tree, o.image); !s) {
@@ -354,7 +361,9 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
   }
   const rt::dds::PlannerTreePicture tree =
       planner ? planner->last_tree() : rt::dds::PlannerTreePicture{};
-  return finish(o, *p, *world, run, tree, command);
+  const rt::dds::PlannerParticipantReport* planner_report =
+      planner_result && planner_result->ok() ? &planner_result->value() : nullptr;
+  return finish(o, *p, *world, run, tree, planner_report, command);
 }
 
 void add_common_options(CLI::App* cmd, ExploreOptions& o) {
