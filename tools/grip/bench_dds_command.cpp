@@ -113,7 +113,7 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
   Scene scene = make_scene("rooms").value();
   link::VehicleLinkConfig config;
   config.domain = o.domain;
-  config.kind = VehicleKind::kDdVelocity;
+  config.vehicle = default_vehicle_params(VehicleKind::kDdVelocity);
   auto link = link::VehicleLink::create(config, scene.grid);
   if (!link) return link.error();
   auto self = self_executable();

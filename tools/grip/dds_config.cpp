@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 
+#include "grip/link/topics.hpp"
+
 namespace grip::tools {
 
 Result<std::string> choose_dds_config(const std::string& dds_config_option) {
@@ -31,6 +33,15 @@ void add_link_options(CLI::App& command, std::uint32_t& domain, std::string& dds
       ->check(CLI::Range(0U, kMaxDomainId))
       ->capture_default_str();
   add_dds_config_option(command, dds_config_option);
+}
+
+CLI::Validator topic_prefix_validator() {
+  return CLI::Validator(
+      [](const std::string& value) {
+        const Status checked = link::check_topic_prefix(value);
+        return checked.ok() ? std::string() : checked.error().message;
+      },
+      "PREFIX");
 }
 
 Result<platform::dds::Participant> join_domain(std::uint32_t domain,

@@ -26,6 +26,22 @@ void add_dds_config_option(CLI::App& command, std::string& dds_config_option);
 // The --domain and --dds-config options of a command on a real link.
 void add_link_options(CLI::App& command, std::uint32_t& domain, std::string& dds_config_option);
 
+// The check of a --topic-prefix value as the command line is parsed (link::check_topic_prefix).
+CLI::Validator topic_prefix_validator();
+
+// --topic-prefix: the prefix of every grip topic name (link/topics.hpp), so that two vehicles
+// can share a domain. Into a std::string, or a std::optional<std::string> that stays unset
+// without the option; `default_text` says what holds then.
+template <typename T>
+void add_topic_prefix_option(CLI::App& command, T& topic_prefix, const std::string& default_text) {
+  command
+      .add_option("--topic-prefix", topic_prefix,
+                  "Prefix of every grip topic name (\"a\": a_grip_plan, ...), so that two vehicles "
+                  "can share a domain (default: " +
+                      default_text + ")")
+      ->check(topic_prefix_validator());
+}
+
 // A participant of an operator tool (`grip echo`, `grip goal`) on `domain`, with the
 // configuration chosen above; a bad option is an ErrorCode::kInvalidArgument.
 Result<platform::dds::Participant> join_domain(std::uint32_t domain,

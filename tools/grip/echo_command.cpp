@@ -1,6 +1,8 @@
 // `grip echo TOPIC`: the samples of one of the contract's topics as JSON lines, one per sample,
-// what `ros2 topic echo` is to ROS users. It only listens: its reader asks for no deadline and
-// accepts any liveliness lease, so it matches every writer of the topic and disturbs none.
+// what `ros2 topic echo` is to ROS users. TOPIC is the unprefixed name; with --topic-prefix P
+// it listens to P_TOPIC, the name each line carries. It only listens: its reader asks for no
+// deadline and accepts any liveliness lease, so it matches every writer of the topic and disturbs
+// none.
 
 #include <chrono>
 #include <iostream>
@@ -27,6 +29,7 @@ struct EchoOptions {
   std::string topic;
   std::uint32_t domain = 0;
   std::string dds_config;
+  std::string topic_prefix;
   std::uint64_t count = 0;  // 0: until Ctrl-C or the timeout
   double timeout_s = 0.0;   // 0: no timeout
 };
@@ -77,6 +80,11 @@ int echo(const EchoOptions& o, const pdds::Participant& participant,
 }
 
 int run_echo(const EchoOptions& o) {
+  auto topics = link::TopicNames::create(o.topic_prefix);
+  if (!topics) {
+    std::cerr << "grip echo: " << topics.error().message << "\n";
+    return 2;
+  }
   auto participant = join_domain(o.domain, o.dds_config);
   if (!participant) {
     std::cerr << "grip echo: " << participant.error().message << "\n";
@@ -85,27 +93,32 @@ int run_echo(const EchoOptions& o) {
   stop_on_signals();
   const link::LinkTiming timing;
   const std::string& t = o.topic;
+  const std::string name = topics->of(t);
   if (t == link::kVehicleStateTopic) {
-    return echo<grip_msg_VehicleState>(o, *participant, &grip_msg_VehicleState_desc, t.c_str(),
+    return echo<grip_msg_VehicleState>(o, *participant, &grip_msg_VehicleState_desc, name.c_str(),
                                        link::vehicle_state_qos(timing, link::Endpoint::kReader));
   }
   if (t == link::kPlanTopic) {
-    return echo<grip_msg_Plan>(o, *participant, &grip_msg_Plan_desc, t.c_str(),
+    return echo<grip_msg_Plan>(o, *participant, &grip_msg_Plan_desc, name.c_str(),
                                link::plan_qos(timing, link::Endpoint::kReader));
   }
   if (t == link::kMapUpdateTopic) {
-    return echo<grip_msg_MapUpdate>(o, *participant, &grip_msg_MapUpdate_desc, t.c_str(),
+    return echo<grip_msg_MapUpdate>(o, *participant, &grip_msg_MapUpdate_desc, name.c_str(),
                                     link::map_update_qos(timing));
   }
   if (t == link::kMapRequestTopic) {
-    return echo<grip_msg_MapRequest>(o, *participant, &grip_msg_MapRequest_desc, t.c_str(),
+    return echo<grip_msg_MapRequest>(o, *participant, &grip_msg_MapRequest_desc, name.c_str(),
                                      link::map_request_qos(timing));
   }
   if (t == link::kGoalTopic) {
-    return echo<grip_msg_Goal>(o, *participant, &grip_msg_Goal_desc, t.c_str(),
+    return echo<grip_msg_Goal>(o, *participant, &grip_msg_Goal_desc, name.c_str(),
                                link::goal_qos(timing));
   }
-  return echo<grip_msg_PlannerStatus>(o, *participant, &grip_msg_PlannerStatus_desc, t.c_str(),
+  if (t == link::kVehicleDescriptionTopic) {
+    return echo<grip_msg_VehicleDescription>(o, *participant, &grip_msg_VehicleDescription_desc,
+                                             name.c_str(), link::vehicle_description_qos(timing));
+  }
+  return echo<grip_msg_PlannerStatus>(o, *participant, &grip_msg_PlannerStatus_desc, name.c_str(),
                                       link::planner_status_qos(timing));
 }
 
@@ -118,8 +131,10 @@ void register_echo_command(CLI::App& app) {
   cmd->add_option("topic", o->topic, "The topic")
       ->required()
       ->check(CLI::IsMember({link::kVehicleStateTopic, link::kPlanTopic, link::kMapUpdateTopic,
-                             link::kMapRequestTopic, link::kGoalTopic, link::kPlannerStatusTopic}));
+                             link::kMapRequestTopic, link::kGoalTopic, link::kPlannerStatusTopic,
+                             link::kVehicleDescriptionTopic}));
   add_link_options(*cmd, o->domain, o->dds_config);
+  add_topic_prefix_option(*cmd, o->topic_prefix, "none");
   cmd->add_option("--count", o->count, "Exit after this many samples (0: no limit)")
       ->capture_default_str();
   cmd->add_option("--timeout", o->timeout_s,

@@ -34,6 +34,7 @@ struct GoalOptions {
   double radius_m = 0.5;
   std::uint32_t domain = 0;
   std::string dds_config;
+  std::string topic_prefix;
   double lease_ms = 500.0;
   double wait_s = 10.0;
   bool stay = false;
@@ -41,10 +42,10 @@ struct GoalOptions {
 
 // The goal that is still offered on the topic, if any writer offers one: the new goal's
 // sequence number follows it. Discovery on a network takes a moment; a second is allowed.
-std::uint64_t last_offered_sequence(const pdds::Participant& participant,
+std::uint64_t last_offered_sequence(const pdds::Participant& participant, const std::string& topic,
                                     const link::LinkTiming& timing) {
-  auto reader = pdds::Reader<grip_msg_Goal>::create(participant, &grip_msg_Goal_desc,
-                                                    link::kGoalTopic, link::goal_qos(timing));
+  auto reader = pdds::Reader<grip_msg_Goal>::create(participant, &grip_msg_Goal_desc, topic,
+                                                    link::goal_qos(timing));
   auto waitset = pdds::WaitSet::create(participant);
   if (!reader || !waitset || !waitset->attach_data_available(reader->get())) return 0;
   if (!reader->wait_for_writers(1, std::chrono::seconds(1))) return 0;
@@ -64,6 +65,11 @@ int run_goal(const GoalOptions& o) {
     std::cerr << "grip goal: X and Y must be finite numbers\n";
     return 2;
   }
+  auto topics = link::TopicNames::create(o.topic_prefix);
+  if (!topics) {
+    std::cerr << "grip goal: " << topics.error().message << "\n";
+    return 2;
+  }
   auto participant = join_domain(o.domain, o.dds_config);
   if (!participant) {
     std::cerr << "grip goal: " << participant.error().message << "\n";
@@ -73,13 +79,13 @@ int run_goal(const GoalOptions& o) {
   timing.liveliness_lease = std::chrono::microseconds(std::llround(o.lease_ms * 1000.0));
 
   grip_msg_Goal goal{};
-  goal.sequence_number = last_offered_sequence(*participant, timing) + 1;
+  goal.sequence_number = last_offered_sequence(*participant, topics->goal, timing) + 1;
   goal.stamp_ns = static_cast<std::uint64_t>(platform::now_ns());
   goal.x_m = o.x_m;
   goal.y_m = o.y_m;
   goal.radius_m = o.radius_m;
-  auto writer = pdds::Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc,
-                                                    link::kGoalTopic, link::goal_qos(timing));
+  auto writer = pdds::Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc, topics->goal,
+                                                    link::goal_qos(timing));
   if (!writer) {
     std::cerr << "grip goal: " << writer.error().message << "\n";
     return 1;
@@ -121,6 +127,7 @@ void register_goal_command(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   add_link_options(*cmd, o->domain, o->dds_config);
+  add_topic_prefix_option(*cmd, o->topic_prefix, "none");
   cmd->add_option("--lease-ms", o->lease_ms,
                   "Liveliness lease [ms]: at most the planner's --lease-ms")
       ->check(CLI::Range(10.0, 3'600'000.0))

@@ -1,5 +1,6 @@
 #include "message_json.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -126,6 +127,20 @@ nlohmann::json to_json(const grip_msg_PlannerStatus& m) {
           {"frontier_groups_given_up", m.frontier_groups_given_up},
           {"target_x_m", m.target_x_m},
           {"target_y_m", m.target_y_m}};
+}
+
+nlohmann::json to_json(const grip_msg_VehicleDescription& m) {
+  nlohmann::json parameters = nlohmann::json::array();
+  const std::uint32_t count =
+      std::min<std::uint32_t>(m.parameter_count, grip_msg_kMaxVehicleParameters);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const grip_msg_VehicleParameter& p = m.parameters[i];
+    parameters.push_back(
+        {{"name", std::string(p.name, strnlen(p.name, sizeof p.name))}, {"value", p.value}});
+  }
+  return {{"model", kind_name(m.model)},
+          {"parameter_count", m.parameter_count},
+          {"parameters", parameters}};
 }
 
 }  // namespace grip::tools

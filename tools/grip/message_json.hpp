@@ -9,6 +9,7 @@
 #include "map_update.h"
 #include "plan.h"
 #include "planner_status.h"
+#include "vehicle_description.h"
 #include "vehicle_state.h"
 
 namespace grip::tools {
@@ -19,5 +20,7 @@ nlohmann::json to_json(const grip_msg_MapUpdate& m);
 nlohmann::json to_json(const grip_msg_MapRequest& m);
 nlohmann::json to_json(const grip_msg_Goal& m);
 nlohmann::json to_json(const grip_msg_PlannerStatus& m);
+// The parameters counted by parameter_count, as an array of {name, value}.
+nlohmann::json to_json(const grip_msg_VehicleDescription& m);
 
 }  // namespace grip::tools

@@ -20,6 +20,7 @@ void add_vehicle_options(CLI::App& command, ParamsOptions& o) {
 void add_domain_option(CLI::App& command, ParamsOptions& o) {
   command.add_option("--domain", o.domain, "DDS domain id (default: the parameters' link.domain)")
       ->check(CLI::Range(0U, kMaxDomainId));
+  add_topic_prefix_option(command, o.topic_prefix, "the parameters' link.topic_prefix");
 }
 
 void add_lockstep_options(CLI::App& command, ParamsOptions& o) {
@@ -78,6 +79,7 @@ Result<params::GripParams> effective_params(const ParamsOptions& o) {
   auto p = base_params(o);
   if (!p) return p.error();
   if (o.domain) p->link.domain = *o.domain;
+  if (o.topic_prefix) p->link.topic_prefix = *o.topic_prefix;
   if (o.period_ms) p->planner.cycle_s = *o.period_ms / 1e3;
   if (o.budget_ms) p->planner.budget_s = *o.budget_ms / 1e3;
   if (o.margin_ms) p->planner.margin_s = *o.margin_ms < 0.0 ? -1.0 : *o.margin_ms / 1e3;
@@ -105,6 +107,7 @@ std::chrono::nanoseconds ns_of(double seconds) {
 rt::dds::PlannerParticipantConfig planner_participant_config(const params::GripParams& p) {
   rt::dds::PlannerParticipantConfig c;
   c.domain = p.link.domain;
+  c.topic_prefix = p.link.topic_prefix;
   c.vehicle = p.vehicle;
   c.cycle_s = p.planner.cycle_s;
   c.budget_s = p.planner.budget_s;
@@ -131,6 +134,7 @@ rt::dds::PlannerParticipantConfig planner_participant_config(const params::GripP
 sim::SimRunConfig sim_run_config(const params::GripParams& p) {
   sim::SimRunConfig c;
   c.domain = p.link.domain;
+  c.topic_prefix = p.link.topic_prefix;
   c.vehicle = p.vehicle;
   c.cycle_s = p.planner.cycle_s;
   c.sensor_radius_m = p.sensor.range_m;

@@ -24,6 +24,7 @@ struct ParamsOptions {
   std::optional<std::string> robot;  // --robot
   // Overrides; unset: the parameters' value.
   std::optional<unsigned> domain;
+  std::optional<std::string> topic_prefix;
   std::optional<double> period_ms;
   std::optional<double> budget_ms;
   std::optional<double> margin_ms;
@@ -36,7 +37,7 @@ struct ParamsOptions {
 
 // --params FILE and --robot R.
 void add_vehicle_options(CLI::App& command, ParamsOptions& o);
-// --domain.
+// --domain and --topic-prefix: where the vehicle's topics are.
 void add_domain_option(CLI::App& command, ParamsOptions& o);
 // --lockstep-edges and --no-safety.
 void add_lockstep_options(CLI::App& command, ParamsOptions& o);

@@ -45,5 +45,41 @@ platform::dds::Qos goal_qos(const LinkTiming& timing) {
   return qos;
 }
 platform::dds::Qos planner_status_qos(const LinkTiming& timing) { return keep_last(timing, 1); }
+platform::dds::Qos vehicle_description_qos(const LinkTiming& timing) { return goal_qos(timing); }
+
+Status check_topic_prefix(std::string_view prefix) {
+  const auto refuse = [&](const char* rule) {
+    return invalid_argument("topic prefix \"" + std::string(prefix) + "\" " + rule);
+  };
+  if (prefix.size() > kMaxTopicPrefix) {
+    return refuse("is longer than 64 characters");
+  }
+  // ASCII only, whatever the locale: the name is on the wire.
+  const auto letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  if (!prefix.empty() && !letter(prefix.front())) return refuse("must start with a letter");
+  for (const char c : prefix) {
+    if (!letter(c) && !digit(c) && c != '_') {
+      return refuse("may hold only letters, digits and '_'");
+    }
+  }
+  return Ok{};
+}
+
+Result<TopicNames> TopicNames::create(std::string_view prefix) {
+  if (Status s = check_topic_prefix(prefix); !s) return s.error();
+  TopicNames names;
+  names.prefix_ = prefix.empty() ? std::string() : std::string(prefix) + "_";
+  names.vehicle_state = names.of(kVehicleStateTopic);
+  names.plan = names.of(kPlanTopic);
+  names.map_update = names.of(kMapUpdateTopic);
+  names.map_request = names.of(kMapRequestTopic);
+  names.goal = names.of(kGoalTopic);
+  names.planner_status = names.of(kPlannerStatusTopic);
+  names.vehicle_description = names.of(kVehicleDescriptionTopic);
+  return names;
+}
+
+std::string TopicNames::of(std::string_view base) const { return prefix_ + std::string(base); }
 
 }  // namespace grip::link

@@ -7,29 +7,33 @@ namespace grip::link {
 
 namespace pdds = platform::dds;
 
-Result<std::unique_ptr<VehicleLink>> VehicleLink::create(const VehicleLinkConfig& config,
-                                                         OccupancyGrid map) {
+Result<VehicleLink::Entities> VehicleLink::Entities::create(const VehicleLinkConfig& config) {
+  auto topics = TopicNames::create(config.topic_prefix);
+  if (!topics) return topics.error();
   auto participant = pdds::Participant::create(config.domain, config.dds_config);
   if (!participant) return participant.error();
   const LinkTiming& timing = config.timing;
+  auto description = publish_vehicle_description(*participant, *topics, timing, config.vehicle);
+  if (!description) return description.error();
   auto states = pdds::Writer<grip_msg_VehicleState>::create(
-      *participant, &grip_msg_VehicleState_desc, kVehicleStateTopic,
+      *participant, &grip_msg_VehicleState_desc, topics->vehicle_state,
       vehicle_state_qos(timing, Endpoint::kWriter));
   if (!states) return states.error();
   auto maps = pdds::Writer<grip_msg_MapUpdate>::create(*participant, &grip_msg_MapUpdate_desc,
-                                                       kMapUpdateTopic, map_update_qos(timing));
+                                                       topics->map_update, map_update_qos(timing));
   if (!maps) return maps.error();
-  auto goals = pdds::Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc, kGoalTopic,
+  auto goals = pdds::Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc, topics->goal,
                                                    goal_qos(timing));
   if (!goals) return goals.error();
   auto requests = pdds::Reader<grip_msg_MapRequest>::create(
-      *participant, &grip_msg_MapRequest_desc, kMapRequestTopic, map_request_qos(timing));
+      *participant, &grip_msg_MapRequest_desc, topics->map_request, map_request_qos(timing));
   if (!requests) return requests.error();
-  auto plans = pdds::Reader<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, kPlanTopic,
+  auto plans = pdds::Reader<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, topics->plan,
                                                    plan_qos(timing, Endpoint::kReader));
   if (!plans) return plans.error();
   auto status = pdds::Reader<grip_msg_PlannerStatus>::create(
-      *participant, &grip_msg_PlannerStatus_desc, kPlannerStatusTopic, planner_status_qos(timing));
+      *participant, &grip_msg_PlannerStatus_desc, topics->planner_status,
+      planner_status_qos(timing));
   if (!status) return status.error();
   auto waitset = pdds::WaitSet::create(*participant);
   if (!waitset) return waitset.error();
@@ -39,30 +43,25 @@ Result<std::unique_ptr<VehicleLink>> VehicleLink::create(const VehicleLinkConfig
   auto status_waitset = pdds::WaitSet::create(*participant);
   if (!status_waitset) return status_waitset.error();
   if (Status s = status_waitset->attach_data_available(status->get()); !s) return s.error();
-  return std::unique_ptr<VehicleLink>(new VehicleLink(
-      config, std::move(map), std::move(participant).value(), std::move(states).value(),
-      std::move(maps).value(), std::move(goals).value(), std::move(requests).value(),
-      std::move(plans).value(), std::move(status).value(), std::move(waitset).value(),
-      std::move(status_waitset).value()));
+  return Entities{std::move(participant).value(), std::move(description).value(),
+                  std::move(states).value(),      std::move(maps).value(),
+                  std::move(goals).value(),       std::move(requests).value(),
+                  std::move(plans).value(),       std::move(status).value(),
+                  std::move(waitset).value(),     std::move(status_waitset).value()};
 }
 
-VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
-                         pdds::Participant participant, pdds::Writer<grip_msg_VehicleState> states,
-                         pdds::Writer<grip_msg_MapUpdate> maps, pdds::Writer<grip_msg_Goal> goals,
-                         pdds::Reader<grip_msg_MapRequest> requests,
-                         pdds::Reader<grip_msg_Plan> plans,
-                         pdds::Reader<grip_msg_PlannerStatus> status, pdds::WaitSet waitset,
-                         pdds::WaitSet status_waitset)
-    : kind_(config.kind),
-      participant_(std::move(participant)),
-      states_(std::move(states)),
-      maps_(std::move(maps)),
-      goals_(std::move(goals)),
-      requests_(std::move(requests)),
-      plans_(std::move(plans)),
-      status_(std::move(status)),
-      waitset_(std::move(waitset)),
-      status_waitset_(std::move(status_waitset)),
+Result<std::unique_ptr<VehicleLink>> VehicleLink::create(const VehicleLinkConfig& config,
+                                                         OccupancyGrid map) {
+  if (Status s = validate(config.vehicle); !s) return s.error();
+  auto entities = Entities::create(config);
+  if (!entities) return entities.error();
+  return std::unique_ptr<VehicleLink>(
+      new VehicleLink(config, std::move(map), std::move(entities).value()));
+}
+
+VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Entities entities)
+    : kind_(vehicle_kind(config.vehicle)),
+      dds_(std::move(entities)),
       sender_(std::move(map)),
       plan_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_Plan, kPlanHistoryDepth>>(
           &grip_msg_Plan_desc)),
@@ -72,13 +71,13 @@ VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
           &grip_msg_PlannerStatus_desc)) {}
 
 Status VehicleLink::publish_state(const grip_msg_VehicleState& state) {
-  return states_.write(state);
+  return dds_.states.write(state);
 }
 
-Status VehicleLink::publish_goal(const grip_msg_Goal& goal) { return goals_.write(goal); }
+Status VehicleLink::publish_goal(const grip_msg_Goal& goal) { return dds_.goals.write(goal); }
 
 void VehicleLink::send(const grip_msg_MapUpdate& update) {
-  if (!maps_.write(update).ok()) ++map_writes_failed_;  // a gap to the planner, which heals it
+  if (!dds_.maps.write(update).ok()) ++map_writes_failed_;  // a gap to the planner, which heals it
 }
 
 void VehicleLink::publish_map_updates(const CellBox& box, std::uint64_t stamp_ns,
@@ -96,7 +95,7 @@ void VehicleLink::publish_map_updates(const CellBox& box, std::uint64_t stamp_ns
 void VehicleLink::answer_map_requests(std::uint64_t stamp_ns) {
   bool requested = false;
   for (;;) {
-    const Result<std::size_t> taken = requests_.take(*request_buffer_);
+    const Result<std::size_t> taken = dds_.requests.take(*request_buffer_);
     if (!taken.ok() || *taken == 0) break;
     requested = true;
   }
@@ -108,7 +107,7 @@ void VehicleLink::answer_map_requests(std::uint64_t stamp_ns) {
 const grip_msg_Plan* VehicleLink::take_plan() {
   const grip_msg_Plan* newest = nullptr;
   for (;;) {
-    const Result<std::size_t> taken = plans_.take(*plan_buffer_);
+    const Result<std::size_t> taken = dds_.plans.take(*plan_buffer_);
     if (!taken.ok() || *taken == 0) break;
     for (std::size_t i = 0; i < *taken; ++i) {
       if (check_plan((*plan_buffer_)[i], kind_).ok()) {
@@ -125,7 +124,7 @@ const grip_msg_Plan* VehicleLink::take_plan() {
 std::size_t VehicleLink::take_plans(FunctionRef<void(const grip_msg_Plan&)> visit) {
   std::size_t visited = 0;
   for (;;) {
-    const Result<std::size_t> taken = plans_.take(*plan_buffer_);
+    const Result<std::size_t> taken = dds_.plans.take(*plan_buffer_);
     if (!taken.ok() || *taken == 0) break;
     for (std::size_t i = 0; i < *taken; ++i) {
       if (check_plan((*plan_buffer_)[i], kind_).ok()) {
@@ -140,13 +139,13 @@ std::size_t VehicleLink::take_plans(FunctionRef<void(const grip_msg_Plan&)> visi
 }
 
 void VehicleLink::wait_for_plan_or_request(std::chrono::nanoseconds timeout) {
-  static_cast<void>(waitset_.wait(timeout));
+  static_cast<void>(dds_.waitset.wait(timeout));
 }
 
 std::optional<grip_msg_PlannerStatus> VehicleLink::take_status() {
   std::optional<grip_msg_PlannerStatus> newest;
   for (;;) {
-    const Result<std::size_t> taken = status_.take(*status_buffer_);
+    const Result<std::size_t> taken = dds_.status.take(*status_buffer_);
     if (!taken.ok() || *taken == 0) break;
     newest = (*status_buffer_)[*taken - 1];  // plain data: a copy owns nothing
   }
@@ -161,12 +160,12 @@ std::optional<grip_msg_PlannerStatus> VehicleLink::wait_for_status(
     if (auto s = take_status()) newest = s;
     const auto now = std::chrono::steady_clock::now();
     if ((newest && newest->cycle >= min_cycle) || now >= until) return newest;
-    static_cast<void>(status_waitset_.wait(until - now));
+    static_cast<void>(dds_.status_waitset.wait(until - now));
   }
 }
 
 bool VehicleLink::planner_alive() const {
-  const auto live = plans_.liveliness_changed();
+  const auto live = dds_.plans.liveliness_changed();
   return live.ok() && live->alive_count > 0;
 }
 

@@ -8,6 +8,7 @@
 #include <thread>
 #include <utility>
 
+#include "description_watch.hpp"
 #include "goal.h"
 #include "grip/link/topics.hpp"
 #include "grip/platform/clock.hpp"
@@ -27,6 +28,7 @@
 #include "planning_side.hpp"
 #include "publish_side.hpp"
 #include "receive_side.hpp"
+#include "vehicle_description.h"
 #include "vehicle_state.h"
 
 namespace grip::rt::dds {
@@ -43,6 +45,7 @@ struct Entities {
   pdds::Reader<grip_msg_VehicleState> states;
   pdds::Reader<grip_msg_MapUpdate> maps;
   pdds::Reader<grip_msg_Goal> goals;
+  pdds::Reader<grip_msg_VehicleDescription> descriptions;
   pdds::Writer<grip_msg_MapRequest> requests;
   pdds::Writer<grip_msg_Plan> plans;
   pdds::Writer<grip_msg_PlannerStatus> status;
@@ -52,40 +55,47 @@ struct Entities {
     link::LinkTiming timing;
     timing.cycle = std::chrono::nanoseconds(ns_of(config.cycle_s));
     timing.liveliness_lease = config.liveliness_lease;
+    auto topics = link::TopicNames::create(config.topic_prefix);
+    if (!topics) return topics.error();
     auto participant = pdds::Participant::create(config.domain, config.dds_config);
     if (!participant) return participant.error();
     auto states = pdds::Reader<grip_msg_VehicleState>::create(
-        *participant, &grip_msg_VehicleState_desc, link::kVehicleStateTopic,
+        *participant, &grip_msg_VehicleState_desc, topics->vehicle_state,
         link::vehicle_state_qos(timing, link::Endpoint::kReader));
     if (!states) return states.error();
-    auto maps = pdds::Reader<grip_msg_MapUpdate>::create(*participant, &grip_msg_MapUpdate_desc,
-                                                         link::kMapUpdateTopic,
-                                                         link::map_update_qos(timing));
+    auto maps = pdds::Reader<grip_msg_MapUpdate>::create(
+        *participant, &grip_msg_MapUpdate_desc, topics->map_update, link::map_update_qos(timing));
     if (!maps) return maps.error();
     auto goals = pdds::Reader<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc,
-                                                     link::kGoalTopic, link::goal_qos(timing));
+                                                     topics->goal, link::goal_qos(timing));
     if (!goals) return goals.error();
+    auto descriptions = pdds::Reader<grip_msg_VehicleDescription>::create(
+        *participant, &grip_msg_VehicleDescription_desc, topics->vehicle_description,
+        link::vehicle_description_qos(timing));
+    if (!descriptions) return descriptions.error();
     auto requests = pdds::Writer<grip_msg_MapRequest>::create(
-        *participant, &grip_msg_MapRequest_desc, link::kMapRequestTopic,
+        *participant, &grip_msg_MapRequest_desc, topics->map_request,
         link::map_request_qos(timing));
     if (!requests) return requests.error();
     auto plans =
-        pdds::Writer<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, link::kPlanTopic,
+        pdds::Writer<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, topics->plan,
                                             link::plan_qos(timing, link::Endpoint::kWriter));
     if (!plans) return plans.error();
     auto status = pdds::Writer<grip_msg_PlannerStatus>::create(
-        *participant, &grip_msg_PlannerStatus_desc, link::kPlannerStatusTopic,
+        *participant, &grip_msg_PlannerStatus_desc, topics->planner_status,
         link::planner_status_qos(timing));
     if (!status) return status.error();
     auto waitset = pdds::WaitSet::create(*participant);
     if (!waitset) return waitset.error();
-    for (const dds_entity_t reader : {states->get(), maps->get(), goals->get()}) {
+    for (const dds_entity_t reader :
+         {states->get(), maps->get(), goals->get(), descriptions->get()}) {
       if (Status s = waitset->attach_data_available(reader); !s) return s.error();
     }
-    return Entities{std::move(participant).value(), std::move(states).value(),
-                    std::move(maps).value(),        std::move(goals).value(),
-                    std::move(requests).value(),    std::move(plans).value(),
-                    std::move(status).value(),      std::move(waitset).value()};
+    return Entities{std::move(participant).value(),  std::move(states).value(),
+                    std::move(maps).value(),         std::move(goals).value(),
+                    std::move(descriptions).value(), std::move(requests).value(),
+                    std::move(plans).value(),        std::move(status).value(),
+                    std::move(waitset).value()};
   }
 };
 
@@ -125,8 +135,10 @@ class PlannerParticipantFor final : public PlannerParticipant {
       : config_(config),
         dds_(std::move(entities)),
         wakeups_(std::move(wakeups)),
-        receive_(vehicle, {dds_.states, dds_.maps, dds_.goals, dds_.requests, dds_.waitset},
-                 handoffs_, wakeups_.lockstep_inputs, config.max_map_cells, config.on_warning),
+        receive_(
+            vehicle, config.vehicle,
+            {dds_.states, dds_.maps, dds_.goals, dds_.descriptions, dds_.requests, dds_.waitset},
+            handoffs_, wakeups_.lockstep_inputs, config.max_map_cells, config.on_warning),
         publish_(V::kKind, {dds_.plans, dds_.status}, handoffs_, wakeups_.publish,
                  receive_.counters(), receive_.clock()),
         planning_(config, vehicle, handoffs_, wakeups_.publish, wakeups_.target_wanted,
@@ -141,6 +153,12 @@ class PlannerParticipantFor final : public PlannerParticipant {
 
  private:
   Status start_up();
+  // Ok while the vehicle has not described itself differently from config_.vehicle.
+  Status vehicle_accepted() const {
+    const DescriptionWatch& description = receive_.description();
+    if (description.verdict() != Described::kDiffers) return Ok{};
+    return Error{ErrorCode::kInvalidArgument, description.mismatch()};
+  }
   Result<PlannerParticipantReport> run_real_time();
   Result<PlannerParticipantReport> run_lockstep();
   void target_main();
@@ -193,7 +211,8 @@ void PlannerParticipantFor<V>::target_main() {
   }
 }
 
-// The planner waits for the map to be in sync, a vehicle state and a goal (or, without a goal
+// The planner waits for the vehicle's description to match its own parameters (a mismatch ends
+// start-up with it), the map to be in sync, a vehicle state and a goal (or, without a goal
 // within the grace period after the map, explores), then sizes the planner: all allocation
 // happens here. run()'s thread is the tiles' consumer until planning starts.
 template <VehicleModel V>
@@ -205,6 +224,8 @@ Status PlannerParticipantFor<V>::start_up() {
   std::optional<std::int64_t> synced_at;  // when the map was first in sync
   std::string refusal;
   while (!stop_.load(std::memory_order_acquire)) {
+    if (Status s = vehicle_accepted(); !s) return s;
+    const bool described = receive_.description().verdict() == Described::kMatches;
     if (!planning_.has_map() && receive_.geometry_ready()) {
       if (Status s = planning_.create_map(receive_.geometry()); !s) return s;
     }
@@ -218,7 +239,7 @@ Status PlannerParticipantFor<V>::start_up() {
     if (in_sync && !synced_at) synced_at = platform::now_ns();
     const bool explore = !goal && config_.explore_without_goal && synced_at &&
                          platform::now_ns() - *synced_at >= config_.goal_grace.count();
-    if (in_sync && state && (goal || explore)) {
+    if (described && in_sync && state && (goal || explore)) {
       if (!planning_.prepared()) {
         if (Status s = planning_.prepare(*state, explore); !s) return s;
         publish_.set_time_scale(planning_.time_scale());
@@ -232,6 +253,7 @@ Status PlannerParticipantFor<V>::start_up() {
     }
     if (timeout > 0 && platform::now_ns() - started > timeout) {
       std::string missing;
+      if (!described) missing += " a vehicle description (the vehicle did not describe itself),";
       if (!in_sync) missing += " a map in sync,";
       if (!state) missing += " a vehicle state,";
       if (!goal && !config_.explore_without_goal) missing += " a goal,";
@@ -249,7 +271,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
   if (Status s = start_up(); !s) return s.error();
   if (config_.on_ready) {
     config_.on_ready(std::string("planning (") + (planning_.lockstep() ? "lockstep" : "real time") +
-                     "): map in sync, vehicle state received");
+                     "): vehicle described as configured, map in sync, vehicle state received");
   }
   return planning_.lockstep() ? run_lockstep() : run_real_time();
 }
@@ -282,8 +304,10 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_real_time() {
   report.time_scale = planning_.time_scale();
   CycleRecord record;
   std::int64_t next_progress = platform::now_ns();
+  Status accepted = Ok{};
   while (true) {
-    if (stop_.load(std::memory_order_acquire)) (*loop)->request_stop();
+    accepted = vehicle_accepted();  // a new vehicle, described otherwise: planning stops
+    if (stop_.load(std::memory_order_acquire) || !accepted) (*loop)->request_stop();
     const bool done = (*loop)->finished();
     while ((*loop)->poll(record)) {
       ++report.cycles;
@@ -306,6 +330,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_real_time() {
   report.allocations_counted = result.allocations_counted;
   report.heap_allocations_in_loop = result.heap_allocations_in_loop;
   report.usage_in_loop = result.usage_in_loop;
+  if (!accepted) return accepted.error();
   return final_report(std::move(report));
 }
 
@@ -323,6 +348,8 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
   bool have_state = true;
   std::int64_t next_progress = platform::now_ns();
   while (!stop_.load(std::memory_order_acquire) && platform::now_ns() < run_until) {
+    // A new vehicle, described otherwise: planning stops.
+    if (Status s = vehicle_accepted(); !s) return s.error();
     beat(report.cycles);  // no state from the vehicle, no cycle, no beat
     if (!have_state) {
       if (!handoffs_.states->update()) {

@@ -23,15 +23,17 @@ link::Verdict check_sample_freshness(const dds_sample_info_t& info) {
 }  // namespace
 
 template <VehicleModel V>
-ReceiveSide<V>::ReceiveSide(const V& vehicle, ReceiveEntities entities, Handoffs& handoffs,
-                            platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells,
+ReceiveSide<V>::ReceiveSide(const V& vehicle, const VehicleParams& params, ReceiveEntities entities,
+                            Handoffs& handoffs, platform::Wakeup& lockstep_inputs,
+                            std::uint32_t max_map_cells,
                             std::function<void(const std::string&)> warn)
     : vehicle_(vehicle),
       dds_(entities),
       handoffs_(handoffs),
       lockstep_inputs_(lockstep_inputs),
       warn_(std::move(warn)),
-      receiver_(max_map_cells) {}
+      receiver_(max_map_cells),
+      description_(params) {}
 
 template <VehicleModel V>
 void ReceiveSide<V>::run(const std::atomic<bool>& stop_threads, const std::atomic<bool>& stopping) {
@@ -41,6 +43,8 @@ void ReceiveSide<V>::run(const std::atomic<bool>& stop_threads, const std::atomi
   auto map_buffer =
       std::make_unique<pdds::SampleBuffer<grip_msg_MapUpdate, 8>>(&grip_msg_MapUpdate_desc);
   auto goal_buffer = std::make_unique<pdds::SampleBuffer<grip_msg_Goal, 4>>(&grip_msg_Goal_desc);
+  auto description_buffer = std::make_unique<pdds::SampleBuffer<grip_msg_VehicleDescription, 2>>(
+      &grip_msg_VehicleDescription_desc);
   while (!stop_threads.load(std::memory_order_acquire)) {
     // The timeout paces the periodic work: snapshot requests, tiles the ring had no room for,
     // liveliness.
@@ -48,6 +52,7 @@ void ReceiveSide<V>::run(const std::atomic<bool>& stop_threads, const std::atomi
     take_states(*state_buffer);
     take_maps(*map_buffer);
     take_goals(*goal_buffer);
+    take_descriptions(*description_buffer);
     const std::int64_t now = platform::now_ns();
     if (receiver_.should_request(now, 500'000'000)) {
       grip_msg_MapRequest request{};
@@ -151,6 +156,17 @@ void ReceiveSide<V>::take_goals(pdds::SampleBuffer<grip_msg_Goal, 4>& buffer) {
         accept_goal(buffer[i]);
       }
     }
+  }
+}
+
+// No freshness check: a durable description is as old as the vehicle side, and still true.
+template <VehicleModel V>
+void ReceiveSide<V>::take_descriptions(pdds::SampleBuffer<grip_msg_VehicleDescription, 2>& buffer) {
+  const auto warn_line = [this](const std::string& line) { warn(line); };
+  for (;;) {
+    const Result<std::size_t> taken = dds_.descriptions.take(buffer);
+    if (!taken.ok() || *taken == 0) return;
+    for (std::size_t i = 0; i < *taken; ++i) description_.observe(buffer[i], warn_line);
   }
 }
 

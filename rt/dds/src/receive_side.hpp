@@ -1,7 +1,8 @@
 #pragma once
 // The planner participant's receive thread (participant_threads.hpp): waits on the readers of
-// vehicle state, map updates and goals, validates every sample (link/messages.hpp), keeps the
-// map in sync (link::MapReceiver, asking for snapshots after gaps), watches the vehicle's
+// vehicle state, map updates, goals and the vehicle's description, validates every sample
+// (link/messages.hpp), keeps the map in sync (link::MapReceiver, asking for snapshots after
+// gaps), checks the vehicle's description (description_watch.hpp), watches the vehicle's
 // liveliness and hands everything over to the planning thread (handoff.hpp). An ordinary
 // thread: it may allocate, and a slow take delays nothing else.
 
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "description_watch.hpp"
 #include "goal.h"
 #include "grip/link/map_sync.hpp"
 #include "grip/link/messages.hpp"
@@ -21,6 +23,7 @@
 #include "grip/platform/dds/writer.hpp"
 #include "grip/platform/wakeup.hpp"
 #include "grip/rt/vehicle_clock.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 #include "handoff.hpp"
 #include "map_update.h"
 #include "vehicle_state.h"
@@ -43,6 +46,7 @@ struct ReceiveEntities {
   platform::dds::Reader<grip_msg_VehicleState>& states;
   platform::dds::Reader<grip_msg_MapUpdate>& maps;
   platform::dds::Reader<grip_msg_Goal>& goals;
+  platform::dds::Reader<grip_msg_VehicleDescription>& descriptions;
   platform::dds::Writer<grip_msg_MapRequest>& requests;
   platform::dds::WaitSet& waitset;
 };
@@ -50,9 +54,10 @@ struct ReceiveEntities {
 template <VehicleModel V>
 class ReceiveSide {
  public:
-  // `warn` takes each warning line (no trailing newline); unset, they go to stderr.
-  ReceiveSide(const V& vehicle, ReceiveEntities entities, Handoffs& handoffs,
-              platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells,
+  // `params` are the planner's own, which `vehicle` was built from: descriptions are checked
+  // against them. `warn` takes each warning line (no trailing newline); unset, to stderr.
+  ReceiveSide(const V& vehicle, const VehicleParams& params, ReceiveEntities entities,
+              Handoffs& handoffs, platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells,
               std::function<void(const std::string&)> warn);
 
   // The receive thread's body: until `stop_threads`. `stopping` (planning was told to stop)
@@ -64,11 +69,13 @@ class ReceiveSide {
   const link::MapGeometry& geometry() const noexcept { return geometry_; }
   const ReceiveCounters& counters() const noexcept { return counters_; }
   const VehicleClock& clock() const noexcept { return clock_; }
+  const DescriptionWatch& description() const noexcept { return description_; }
 
  private:
   void take_states(platform::dds::SampleBuffer<grip_msg_VehicleState, 8>& buffer);
   void take_maps(platform::dds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer);
   void take_goals(platform::dds::SampleBuffer<grip_msg_Goal, 4>& buffer);
+  void take_descriptions(platform::dds::SampleBuffer<grip_msg_VehicleDescription, 2>& buffer);
   void accept_goal(const grip_msg_Goal& goal);
   void mark_dirty(const CellBox& box);
   void hand_over_tiles();
@@ -98,6 +105,7 @@ class ReceiveSide {
   link::MapGeometry geometry_;  // written once before geometry_ready_ (release)
   ReceiveCounters counters_;
   VehicleClock clock_;
+  DescriptionWatch description_;
 };
 
 extern template class ReceiveSide<DdVelocity>;

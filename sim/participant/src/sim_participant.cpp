@@ -42,7 +42,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   link::VehicleLinkConfig link_config;
   link_config.domain = config.domain;
   link_config.dds_config = config.dds_config;
-  link_config.kind = V::kKind;
+  link_config.topic_prefix = config.topic_prefix;
+  link_config.vehicle = config.vehicle;  // described to the planner, which refuses another
   link_config.timing.cycle = std::chrono::nanoseconds(std::llround(config.cycle_s * 1e9));
   link_config.timing.time_scale = config.time_scale;
   link_config.timing.liveliness_lease = config.liveliness_lease;

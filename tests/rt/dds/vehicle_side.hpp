@@ -18,7 +18,7 @@ class VehicleSide {
     Scene scene = make_scene("rooms").value();
     VehicleLinkConfig config;
     config.domain = domain;
-    config.kind = kind;
+    config.vehicle = default_vehicle_params(kind);
     auto link = VehicleLink::create(config, scene.grid);
     if (!link) return nullptr;
     return std::unique_ptr<VehicleSide>(new VehicleSide(std::move(scene), kind, std::move(*link)));

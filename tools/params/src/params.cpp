@@ -5,6 +5,7 @@
 #include <string>
 
 #include "fields.hpp"
+#include "grip/link/topics.hpp"
 #include "grip/planner/step_margin.hpp"
 #include "grip/world/occupancy_grid.hpp"
 
@@ -90,23 +91,11 @@ void check_exploration(const SensorParams& s, const ExplorationParams& e, Rules&
   r.require(finite_positive(e.stuck_after_s), e.stuck_after_s, "finite and > 0");
 }
 
-// DDS topic names allow more, but a prefix shared by C++ identifiers and shell words keeps to
-// these.
-bool is_topic_prefix(const std::string& s) {
-  const auto letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
-  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
-  if (s.empty()) return true;
-  if (s.size() > 64 || !letter(s.front())) return false;
-  for (char c : s) {
-    if (!letter(c) && !digit(c) && c != '_') return false;
-  }
-  return true;
-}
-
 void check_link_and_runtime(const LinkParams& l, const RuntimeParams& rt, Rules& r) {
   r.require(l.domain <= kMaxDomainId, l.domain,
             "at most " + std::to_string(kMaxDomainId) + ", where the RTPS port mapping ends");
-  r.require(is_topic_prefix(l.topic_prefix), l.topic_prefix,
+  // The link's own rule (link/topics.hpp): a file is refused as soon as it is read.
+  r.require(link::check_topic_prefix(l.topic_prefix).ok(), l.topic_prefix,
             "empty or up to 64 of [A-Za-z0-9_], starting with a letter");
   // Below 10 ms a lease expires between two heartbeats of a loaded machine.
   r.require(std::isfinite(l.liveliness_lease_s) && l.liveliness_lease_s >= 0.01,

@@ -15,12 +15,25 @@
 //     parts); anything lost anyway is a gap in the sequence numbers, healed by a snapshot.
 //   map request: RELIABLE, KEEP_LAST 4.
 //   goal: RELIABLE, KEEP_LAST 1, TRANSIENT_LOCAL: a planner that starts late still gets the goal.
+//   vehicle description: RELIABLE, KEEP_LAST 1, TRANSIENT_LOCAL: written once when the vehicle
+//     side starts, read by a planner that starts at any time after (and by one that starts
+//     before: durable readers get it either way).
 //   planner status: RELIABLE, KEEP_LAST 1.
 //   All: AUTOMATIC liveliness with the given lease, so that each side notices the other's loss
 //   within about one lease; max_blocking_time 10 ms (only keep-last-64 map updates can block).
+//
+// Names: every topic can carry a prefix, "<prefix>_grip_plan" etc., so that two vehicles (each
+// with its planner) can share a DDS domain; empty by default, which leaves the names as below.
+// TopicNames is the one place that builds them: every reader and writer of a grip topic takes
+// its name from there.
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "grip/common/result.hpp"
 
 #include "grip/platform/dds/qos.hpp"
 
@@ -34,6 +47,31 @@ inline constexpr const char* kMapUpdateTopic = "grip_map_update";
 inline constexpr const char* kMapRequestTopic = "grip_map_request";
 inline constexpr const char* kGoalTopic = "grip_goal";
 inline constexpr const char* kPlannerStatusTopic = "grip_planner_status";
+inline constexpr const char* kVehicleDescriptionTopic = "grip_vehicle_description";
+
+// A topic prefix: empty, or [A-Za-z][A-Za-z0-9_]* of at most kMaxTopicPrefix characters.
+inline constexpr std::size_t kMaxTopicPrefix = 64;
+// Ok, or kInvalidArgument naming the prefix and the rule it breaks.
+Status check_topic_prefix(std::string_view prefix);
+
+// The names of the contract's topics under one prefix.
+struct TopicNames {
+  std::string vehicle_state;
+  std::string plan;
+  std::string map_update;
+  std::string map_request;
+  std::string goal;
+  std::string planner_status;
+  std::string vehicle_description;
+
+  // Refuses a prefix check_topic_prefix refuses.
+  static Result<TopicNames> create(std::string_view prefix);
+  // The name of the topic whose unprefixed name is `base` (one of the constants above).
+  std::string of(std::string_view base) const;
+
+ private:
+  std::string prefix_;
+};
 
 struct LinkTiming {
   std::chrono::nanoseconds cycle{std::chrono::milliseconds(50)};  // T in vehicle time
@@ -49,5 +87,6 @@ platform::dds::Qos map_update_qos(const LinkTiming& timing);
 platform::dds::Qos map_request_qos(const LinkTiming& timing);
 platform::dds::Qos goal_qos(const LinkTiming& timing);
 platform::dds::Qos planner_status_qos(const LinkTiming& timing);
+platform::dds::Qos vehicle_description_qos(const LinkTiming& timing);
 
 }  // namespace grip::link

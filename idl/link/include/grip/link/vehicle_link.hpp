@@ -1,7 +1,8 @@
 #pragma once
 // The vehicle controller's end of the contract (the simulator stands in for it; tests and tools
-// use it too): publishes vehicle state, map updates (answering the planner's map requests with
-// snapshots) and goals; receives plans, validated, and the planner's status. Ordinary threads
+// use it too): describes the vehicle once, at creation (durable, for planners that start later);
+// publishes vehicle state, map updates (answering the planner's map requests with snapshots) and
+// goals; receives plans, validated, and the planner's status. Ordinary threads
 // only: a writer here may block up to its QoS max_blocking_time.
 
 #include <chrono>
@@ -13,10 +14,12 @@
 #include "grip/common/result.hpp"
 #include "grip/link/map_sync.hpp"
 #include "grip/link/topics.hpp"
+#include "grip/link/vehicle_description.hpp"
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/waitset.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 #include "map_update.h"
 #include "plan.h"
 #include "planner_status.h"
@@ -26,14 +29,18 @@ namespace grip::link {
 
 struct VehicleLinkConfig {
   platform::dds::DomainId domain = 0;
-  std::string dds_config;  // empty: the built-in loopback-only configuration
-  VehicleKind kind = VehicleKind::kCar;
+  std::string dds_config;    // empty: the built-in loopback-only configuration
+  std::string topic_prefix;  // empty: the topics' own names (topics.hpp)
+  // The vehicle: described once at creation (vehicle_description.hpp); plans of another kind
+  // are rejected.
+  VehicleParams vehicle = CarParams{};
   LinkTiming timing;
 };
 
 class VehicleLink {
  public:
-  // `map` is the mapping side's authoritative map (the sensed map, in the simulator).
+  // `map` is the mapping side's authoritative map (the sensed map, in the simulator). Refuses
+  // a vehicle validate() refuses and a bad topic prefix (kInvalidArgument).
   static Result<std::unique_ptr<VehicleLink>> create(const VehicleLinkConfig& config,
                                                      OccupancyGrid map);
 
@@ -69,30 +76,30 @@ class VehicleLink {
   std::uint64_t snapshots_sent() const noexcept { return sender_.snapshots_sent(); }
   // Liveliness of the planner as seen from here (its plan writer).
   bool planner_alive() const;
-  const platform::dds::Reader<grip_msg_Plan>& plan_reader() const noexcept { return plans_; }
+  const platform::dds::Reader<grip_msg_Plan>& plan_reader() const noexcept { return dds_.plans; }
 
  private:
-  VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map,
-              platform::dds::Participant participant,
-              platform::dds::Writer<grip_msg_VehicleState> states,
-              platform::dds::Writer<grip_msg_MapUpdate> maps,
-              platform::dds::Writer<grip_msg_Goal> goals,
-              platform::dds::Reader<grip_msg_MapRequest> requests,
-              platform::dds::Reader<grip_msg_Plan> plans,
-              platform::dds::Reader<grip_msg_PlannerStatus> status, platform::dds::WaitSet waitset,
-              platform::dds::WaitSet status_waitset);
+  // The DDS entities; the link is their one owner.
+  struct Entities {
+    platform::dds::Participant participant;
+    platform::dds::Writer<grip_msg_VehicleDescription> description;
+    platform::dds::Writer<grip_msg_VehicleState> states;
+    platform::dds::Writer<grip_msg_MapUpdate> maps;
+    platform::dds::Writer<grip_msg_Goal> goals;
+    platform::dds::Reader<grip_msg_MapRequest> requests;
+    platform::dds::Reader<grip_msg_Plan> plans;
+    platform::dds::Reader<grip_msg_PlannerStatus> status;
+    platform::dds::WaitSet waitset;         // plans and map requests
+    platform::dds::WaitSet status_waitset;  // the planner's status
+
+    static Result<Entities> create(const VehicleLinkConfig& config);
+  };
+
+  VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Entities entities);
   void send(const grip_msg_MapUpdate& update);
 
   VehicleKind kind_;
-  platform::dds::Participant participant_;
-  platform::dds::Writer<grip_msg_VehicleState> states_;
-  platform::dds::Writer<grip_msg_MapUpdate> maps_;
-  platform::dds::Writer<grip_msg_Goal> goals_;
-  platform::dds::Reader<grip_msg_MapRequest> requests_;
-  platform::dds::Reader<grip_msg_Plan> plans_;
-  platform::dds::Reader<grip_msg_PlannerStatus> status_;
-  platform::dds::WaitSet waitset_;         // plans and map requests
-  platform::dds::WaitSet status_waitset_;  // the planner's status
+  Entities dds_;
   MapSender sender_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_Plan, kPlanHistoryDepth>> plan_buffer_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_MapRequest, 8>> request_buffer_;

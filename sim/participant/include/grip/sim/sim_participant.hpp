@@ -36,8 +36,10 @@ namespace grip::sim {
 
 struct SimRunConfig {
   platform::dds::DomainId domain = 0;
-  std::string dds_config;  // empty: the built-in loopback-only configuration
-  // The vehicle simulated: its limits bound the plans it executes, its footprint the collisions.
+  std::string dds_config;    // empty: the built-in loopback-only configuration
+  std::string topic_prefix;  // empty: the topics' own names (link/topics.hpp)
+  // The vehicle simulated: its limits bound the plans it executes, its footprint the collisions,
+  // and it describes itself to the planner with them (link/vehicle_description.hpp).
   VehicleParams vehicle = CarParams{};
   std::string world;  // the scene name or map file, for the report
   double start_x_m = 0.0;

@@ -14,8 +14,13 @@
 // run()'s thread plans one cycle for each state, once the map has every update sensed before
 // it (VehicleState.map_sequence), growing a fixed number of edges: a seed reproduces a run.
 //
-// Start-up (run()): the planner waits for the map to be in sync, a vehicle state and a goal,
-// then builds the planner (all allocation happens here) and starts the planning thread.
+// Start-up (run()): the planner waits for the vehicle's description (grip_vehicle_description)
+// to match its own vehicle parameters, the map to be in sync, a vehicle state and a goal, then
+// builds the planner (all allocation happens here) and starts the planning thread. A vehicle
+// described otherwise is refused: run() returns the difference (kInvalidArgument), and nothing
+// is planned or published; one that describes itself otherwise later (a new incarnation) stops
+// planning the same way, with a warning.
+// Topics carry `topic_prefix` (link/topics.hpp), so that two vehicles can share a domain.
 // Losing the vehicle (its liveliness lease expires) does not stop planning: the planner keeps
 // planning on its last map and state, and says so in its status; the controller, for its part,
 // falls back to the contingency maneuver that ends every plan.
@@ -43,12 +48,14 @@ namespace grip::rt::dds {
 
 struct PlannerParticipantConfig {
   platform::dds::DomainId domain = 0;
-  std::string dds_config;  // Cyclone XML or file:// URI; empty: the built-in loopback-only one
-  VehicleParams vehicle = CarParams{};  // checked by create()
-  double cycle_s = 0.05;                // T, in vehicle time
-  double budget_s = 0.025;              // planning time per cycle, in vehicle time
-  double margin_s = -1.0;  // growth stops this long before the deadline; < 0: wall-clock
-                           // default_safety_margin_ms(budget)
+  std::string dds_config;    // Cyclone XML or file:// URI; empty: the built-in loopback-only one
+  std::string topic_prefix;  // empty: the topics' own names; checked by create()
+  // What the planner plans with, checked by create(); the vehicle must describe itself the same.
+  VehicleParams vehicle = CarParams{};
+  double cycle_s = 0.05;    // T, in vehicle time
+  double budget_s = 0.025;  // planning time per cycle, in vehicle time
+  double margin_s = -1.0;   // growth stops this long before the deadline; < 0: wall-clock
+                            // default_safety_margin_ms(budget)
   platform::PolicyRequest policy = platform::PolicyRequest::kAuto;
   int fifo_priority = 80;       // the planning thread's, under SCHED_FIFO
   int cpu = -1;                 // the planning thread pinned to this CPU (fifo or other); -1: any
@@ -144,7 +151,8 @@ class PlannerParticipant {
   virtual ~PlannerParticipant() = default;
 
   // Start-up, then planning until duration_s passes or request_stop(). An error when start-up
-  // fails (timeout: names what is missing) or the planning thread cannot start.
+  // fails (timeout: names what is missing), the planning thread cannot start, or the vehicle
+  // describes itself otherwise than `vehicle` (kInvalidArgument naming the field).
   virtual Result<PlannerParticipantReport> run() = 0;
   // After run() has returned (allocates): empty when planning never started.
   virtual PlannerTreePicture last_tree() const = 0;
