@@ -8,17 +8,18 @@
 #include <csignal>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "child_process.hpp"
 #include "grip_command.hpp"
+#include "json_lines.hpp"
 
 namespace {
 
 using grip::testing::ChildProcess;
 using grip::testing::CommandRun;
+using grip::testing::json_lines;
 using grip::testing::kGrip;
 using grip::testing::run_grip;
 
@@ -39,13 +40,6 @@ class RunningExploration {
  private:
   std::optional<ChildProcess> child_;
 };
-
-std::vector<nlohmann::json> json_lines(const std::string& text) {
-  std::vector<nlohmann::json> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
-  return lines;
-}
 
 TEST(EchoCommand, PrintsThePlannersStatusAsJsonLines) {
   RunningExploration exploration("86");

@@ -10,28 +10,24 @@
 namespace grip::link {
 namespace {
 
+// Every name of `names` is `start` followed by the contract's own name.
+void expect_names_start_with(const TopicNames& names, const std::string& start) {
+  EXPECT_EQ(names.vehicle_state, start + "grip_vehicle_state");
+  EXPECT_EQ(names.plan, start + "grip_plan");
+  EXPECT_EQ(names.map_update, start + "grip_map_update");
+  EXPECT_EQ(names.map_request, start + "grip_map_request");
+  EXPECT_EQ(names.goal, start + "grip_goal");
+  EXPECT_EQ(names.planner_status, start + "grip_planner_status");
+  EXPECT_EQ(names.vehicle_description, start + "grip_vehicle_description");
+  EXPECT_EQ(names.of(kPlanTopic), start + "grip_plan");
+}
+
 TEST(TopicNames, WithoutAPrefixTheNamesAreTheContractsOwn) {
-  const TopicNames names = TopicNames::create("").value();
-  EXPECT_EQ(names.vehicle_state, "grip_vehicle_state");
-  EXPECT_EQ(names.plan, "grip_plan");
-  EXPECT_EQ(names.map_update, "grip_map_update");
-  EXPECT_EQ(names.map_request, "grip_map_request");
-  EXPECT_EQ(names.goal, "grip_goal");
-  EXPECT_EQ(names.planner_status, "grip_planner_status");
-  EXPECT_EQ(names.vehicle_description, "grip_vehicle_description");
-  EXPECT_EQ(names.of(kPlanTopic), "grip_plan");
+  expect_names_start_with(TopicNames::create("").value(), "");
 }
 
 TEST(TopicNames, APrefixIsPutBeforeEveryName) {
-  const TopicNames names = TopicNames::create("rover_2").value();
-  EXPECT_EQ(names.vehicle_state, "rover_2_grip_vehicle_state");
-  EXPECT_EQ(names.plan, "rover_2_grip_plan");
-  EXPECT_EQ(names.map_update, "rover_2_grip_map_update");
-  EXPECT_EQ(names.map_request, "rover_2_grip_map_request");
-  EXPECT_EQ(names.goal, "rover_2_grip_goal");
-  EXPECT_EQ(names.planner_status, "rover_2_grip_planner_status");
-  EXPECT_EQ(names.vehicle_description, "rover_2_grip_vehicle_description");
-  EXPECT_EQ(names.of(kGoalTopic), "rover_2_grip_goal");
+  expect_names_start_with(TopicNames::create("rover_2").value(), "rover_2_");
 }
 
 TEST(TopicNames, APrefixOf64CharactersIsTheLongestAccepted) {

@@ -20,6 +20,7 @@
 #include "child_process.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "running_planner.hpp"
 #include "test_paths.hpp"
 #include "vehicle_side.hpp"
 
@@ -28,56 +29,10 @@ namespace {
 
 using namespace std::chrono_literals;
 using link::testing::VehicleSide;
+using testing::eventually;
+using testing::planner_config;
+using testing::RunningPlanner;
 using namespace ::grip::link;
-
-PlannerParticipantConfig planner_config(platform::dds::DomainId domain, double duration_s) {
-  PlannerParticipantConfig config;
-  config.domain = domain;
-  config.vehicle = default_vehicle_params(VehicleKind::kDdVelocity);
-  config.cycle_s = 0.05;
-  config.budget_s = 0.02;
-  config.duration_s = duration_s;
-  config.startup_timeout = 20s;
-  config.lock_memory = false;  // a test does not pin the whole test binary in RAM
-  config.liveliness_lease = 500ms;
-  return config;
-}
-
-// Runs the participant on its own thread; its report (or error) is there after join().
-struct RunningPlanner {
-  std::unique_ptr<PlannerParticipant> planner;
-  std::optional<Result<PlannerParticipantReport>> result;
-  std::thread thread;
-
-  explicit RunningPlanner(const PlannerParticipantConfig& config) {
-    auto created = PlannerParticipant::create(config);
-    if (!created) {
-      result = created.error();
-      return;
-    }
-    planner = std::move(created).value();
-    thread = std::thread([this] { result = planner->run(); });
-  }
-  const Result<PlannerParticipantReport>& join() {
-    if (thread.joinable()) thread.join();
-    return *result;
-  }
-  ~RunningPlanner() {
-    if (planner) planner->request_stop();
-    if (thread.joinable()) thread.join();
-  }
-};
-
-template <typename Predicate>
-bool eventually(Predicate done, std::chrono::milliseconds timeout, VehicleSide* vehicle = nullptr) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < until) {
-    if (vehicle != nullptr) vehicle->service();
-    if (done()) return true;
-    std::this_thread::sleep_for(10ms);
-  }
-  return false;
-}
 
 TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
   constexpr platform::dds::DomainId kDomain = 70;
@@ -101,7 +56,7 @@ TEST(PlannerParticipant, PlansArriveIntactInOrderAndTheMapHealsAfterDrops) {
   std::optional<grip_msg_PlannerStatus> status;
   int tick = 0;
   const auto until = std::chrono::steady_clock::now() + 30s;
-  while (!planner.result && std::chrono::steady_clock::now() < until) {
+  while (!planner.returned && std::chrono::steady_clock::now() < until) {
     vehicle->service();
     if (++tick % 10 == 0 && tick < 300) {
       // An obstacle far from the start appears, or a cell flips: real changes, away from the

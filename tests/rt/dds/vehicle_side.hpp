@@ -5,23 +5,34 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "grip/link/vehicle_link.hpp"
 #include "grip/platform/clock.hpp"
 #include "grip/scenes/scenes.hpp"
+#include "grip/vehicles/vehicle_params.hpp"
 
 namespace grip::link::testing {
 
 class VehicleSide {
  public:
-  static std::unique_ptr<VehicleSide> create(platform::dds::DomainId domain, VehicleKind kind) {
+  // The vehicle `vehicle` describes itself as, on topics with `topic_prefix`.
+  static std::unique_ptr<VehicleSide> create(platform::dds::DomainId domain,
+                                             const VehicleParams& vehicle,
+                                             const std::string& topic_prefix = "") {
     Scene scene = make_scene("rooms").value();
     VehicleLinkConfig config;
     config.domain = domain;
-    config.vehicle = default_vehicle_params(kind);
+    config.topic_prefix = topic_prefix;
+    config.vehicle = vehicle;
     auto link = VehicleLink::create(config, scene.grid);
     if (!link) return nullptr;
-    return std::unique_ptr<VehicleSide>(new VehicleSide(std::move(scene), kind, std::move(*link)));
+    return std::unique_ptr<VehicleSide>(
+        new VehicleSide(std::move(scene), vehicle_kind(vehicle), std::move(*link)));
+  }
+  // The paper's vehicle of `kind`.
+  static std::unique_ptr<VehicleSide> create(platform::dds::DomainId domain, VehicleKind kind) {
+    return create(domain, default_vehicle_params(kind));
   }
 
   grip_msg_VehicleState state() const {
