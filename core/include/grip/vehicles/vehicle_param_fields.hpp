@@ -25,12 +25,18 @@ void for_each_param(P& f, F&& visit) {
   visit(std::string_view("footprint.half_width_m"), f.half_width_m);
 }
 
+// The keys both differential drives have, first in their sections.
 template <typename P, typename F>
-requires std::is_same_v<std::remove_const_t<P>, DdVelocityParams>
-void for_each_param(P& p, F&& visit) {
+void for_each_differential_drive_param(P& p, F&& visit) {
   visit(std::string_view("max_wheel_speed_m_s"), p.max_wheel_speed_m_s);
   visit(std::string_view("max_turn_rate_rad_s"), p.max_turn_rate_rad_s);
   visit(std::string_view("half_axle_m"), p.half_axle_m);
+}
+
+template <typename P, typename F>
+requires std::is_same_v<std::remove_const_t<P>, DdVelocityParams>
+void for_each_param(P& p, F&& visit) {
+  for_each_differential_drive_param(p, visit);
   visit(std::string_view("top_speed_share"), p.top_speed_share);
   for_each_param(p.footprint, visit);
 }
@@ -38,11 +44,9 @@ void for_each_param(P& p, F&& visit) {
 template <typename P, typename F>
 requires std::is_same_v<std::remove_const_t<P>, DdAccelerationParams>
 void for_each_param(P& p, F&& visit) {
-  visit(std::string_view("max_wheel_speed_m_s"), p.max_wheel_speed_m_s);
-  visit(std::string_view("max_turn_rate_rad_s"), p.max_turn_rate_rad_s);
+  for_each_differential_drive_param(p, visit);
   visit(std::string_view("max_wheel_accel_m_s2"), p.max_wheel_accel_m_s2);
   visit(std::string_view("braking_decel_m_s2"), p.braking_decel_m_s2);
-  visit(std::string_view("half_axle_m"), p.half_axle_m);
   visit(std::string_view("velocity_target_share"), p.velocity_target_share);
   for_each_param(p.footprint, visit);
 }
