@@ -73,6 +73,32 @@ Result<params::GripParams> base_params(const ParamsOptions& o) {
   return loaded;
 }
 
+// Where a refused value came from, for a message that starts with its key: the option that
+// overrode it, else the file.
+std::string where_set(const ParamsOptions& o, const std::string& message) {
+  struct Override {
+    const char* key;
+    bool given;
+    const char* option;
+  };
+  const Override overrides[] = {
+      {"link.domain", o.domain.has_value(), "--domain"},
+      {"planner.cycle_s", o.period_ms.has_value(), "--period-ms"},
+      {"planner.budget_s", o.budget_ms.has_value(), "--budget-ms"},
+      {"planner.margin_s", o.margin_ms.has_value(), "--margin-ms"},
+      {"planner.max_edges", o.max_edges.has_value(), "--max-edges"},
+      {"planner.lockstep_edges", o.lockstep_edges.has_value(), "--lockstep-edges"},
+      {"link.liveliness_lease_s", o.lease_ms.has_value(), "--lease-ms"},
+      {"link.topic_prefix", o.topic_prefix.has_value(), "--topic-prefix"},
+  };
+  for (const Override& override : overrides) {
+    if (override.given && message.starts_with(override.key)) {
+      return std::string(" (set by ") + override.option + ")";
+    }
+  }
+  return o.file.empty() ? "" : " (" + o.file + ")";
+}
+
 }  // namespace
 
 Result<params::GripParams> effective_params(const ParamsOptions& o) {
@@ -93,7 +119,7 @@ Result<params::GripParams> effective_params(const ParamsOptions& o) {
     p->runtime.policy = *policy;
   }
   if (Status s = params::validate(*p); !s) {
-    return invalid_argument(s.error().message + (o.file.empty() ? "" : " (" + o.file + ")"));
+    return invalid_argument(s.error().message + where_set(o, s.error().message));
   }
   return p;
 }
