@@ -239,6 +239,28 @@ TEST(ExploreCommand, AVehicleDefinedOnlyInAParameterFileExploresWithinItsLimits)
       << contradicted.output;
 }
 
+// A planner given another vehicle's file than the simulator's: the vehicle describes itself,
+// and the planner refuses to plan for it, naming the field, as a configuration error (exit 2).
+TEST(ExploreCommand, APlannerRefusesAVehicleThatIsNotTheOneItsParametersDescribe) {
+  const std::string params = ::testing::TempDir() + "grip-slow-car.yaml";
+  {
+    std::ofstream out(params);
+    out << "vehicle:\n  model: car\n  max_speed_m_s: 2.0\n";
+  }
+  auto simulator = grip::testing::ChildProcess::spawn({kGrip, "sim", "--map", write_small_map(),
+                                                       "--params", params, "--lockstep", "--domain",
+                                                       "75", "--max-sim-time", "60"});
+  ASSERT_TRUE(simulator.has_value());
+  const CommandRun planner = run("planner --robot car --domain 75 --startup-timeout 30");
+  simulator->kill(SIGTERM);
+  simulator->wait();
+  EXPECT_EQ(planner.status, 2) << planner.output;
+  EXPECT_NE(planner.output.find("the vehicle describes itself with vehicle.max_speed_m_s 2, this "
+                                "planner's parameters say 3"),
+            std::string::npos)
+      << planner.output;
+}
+
 // Plans lost on the way (as if they came too late): the vehicle goes on with the plan it has,
 // the planner sees from its states that it does not follow the plans it was sent, and plans
 // from where it will be. A lost plan costs at most one refused plan after it, never a

@@ -168,7 +168,10 @@ int run_planner(const PlannerOptions& o) {
   if (tty) std::cerr << "\n";
   if (!report) {
     log.error(report.error().message);
-    return 1;
+    // kInvalidArgument: a vehicle other than the parameters describe, or what it sent the
+    // planner cannot plan with. Like a bad file, restarting does not mend it (the unit's
+    // RestartPreventExitStatus).
+    return report.error().code == ErrorCode::kInvalidArgument ? 2 : 1;
   }
   if (trace) {
     if (Status s = trace->close(); !s) {
