@@ -63,13 +63,22 @@ std::string world_label(const Run& r) {
   return r.is_map ? std::filesystem::path(r.world).filename().string() : r.world;
 }
 
+// A vehicle of --robots: a built-in one's name, or a parameter file.
+bool is_params_file(const std::string& robot) {
+  return robot.ends_with(".yaml") || robot.ends_with(".yml");
+}
+// Its name in the table, the reports' names and the JSON: a file's stem.
+std::string vehicle_label(const std::string& robot) {
+  return is_params_file(robot) ? std::filesystem::path(robot).stem().string() : robot;
+}
+
 std::vector<std::string> explore_args(const BenchExploreOptions& o, const Run& r,
                                       const std::string& self, unsigned domain) {
   std::vector<std::string> args{self,
                                 "explore",
                                 r.is_map ? "--map" : "--scene",
                                 r.world,
-                                "--robot",
+                                is_params_file(r.robot) ? "--params" : "--robot",
                                 r.robot,
                                 "--seed",
                                 std::to_string(r.seed),
@@ -94,7 +103,7 @@ std::vector<std::string> explore_args(const BenchExploreOptions& o, const Run& r
 
 std::string run_line(const Run& r) {
   std::ostringstream line;
-  line << world_label(r) << " " << r.robot << " seed " << r.seed << ": ";
+  line << world_label(r) << " " << vehicle_label(r.robot) << " seed " << r.seed << ": ";
   if (r.report.is_null()) {
     line << "no report (exit " << r.exit_status << ")";
     return line.str();
@@ -181,13 +190,14 @@ void print_table(const BenchExploreOptions& o, const std::vector<Row>& rows) {
     std::ostringstream complete;
     complete << r.complete << "/" << r.runs;
     // A world name longer than its column still leaves a space before the robot.
-    std::cout << std::left << std::setw(26) << r.world + " " << std::setw(10) << r.robot
-              << std::right << std::setw(9) << complete.str() << std::setw(11) << r.collisions
-              << std::setw(9) << r.collided << std::fixed << std::setprecision(3) << std::setw(10)
-              << r.min_coverage << std::setw(10) << median(r.coverage) << std::setprecision(1)
-              << std::setw(11) << median(r.sim_time) << std::setw(12) << median(r.wall_time)
-              << std::setprecision(2) << std::setw(11) << median(r.speed) << std::setw(14)
-              << median(r.retraced) << std::setprecision(1) << std::setw(11);
+    std::cout << std::left << std::setw(26) << r.world + " " << std::setw(10)
+              << vehicle_label(r.robot) << std::right << std::setw(9) << complete.str()
+              << std::setw(11) << r.collisions << std::setw(9) << r.collided << std::fixed
+              << std::setprecision(3) << std::setw(10) << r.min_coverage << std::setw(10)
+              << median(r.coverage) << std::setprecision(1) << std::setw(11) << median(r.sim_time)
+              << std::setw(12) << median(r.wall_time) << std::setprecision(2) << std::setw(11)
+              << median(r.speed) << std::setw(14) << median(r.retraced) << std::setprecision(1)
+              << std::setw(11);
     if (r.first_collision.empty()) {
       std::cout << "-";
     } else {
@@ -241,7 +251,9 @@ int run_bench(const BenchExploreOptions& o) {
         r.seed = seed;
         std::string label = world_label(r);
         std::replace(label.begin(), label.end(), '.', '_');
-        r.stem = label + "-" + robot + "-" + std::to_string(seed);
+        const std::string vehicle =
+            is_params_file(robot) ? std::filesystem::path(robot).stem().string() : robot;
+        r.stem = label + "-" + vehicle + "-" + std::to_string(seed);
         runs.push_back(std::move(r));
       }
     }
@@ -297,7 +309,7 @@ int run_bench(const BenchExploreOptions& o) {
     nlohmann::json list = nlohmann::json::array();
     for (const Run& r : runs) {
       nlohmann::json e{{"world", world_label(r)},
-                       {"robot", r.robot},
+                       {"robot", vehicle_label(r.robot)},
                        {"seed", r.seed},
                        {"exit_status", r.exit_status},
                        {"report", o.out_dir + "/" + r.stem + ".json"}};
@@ -314,7 +326,7 @@ int run_bench(const BenchExploreOptions& o) {
     nlohmann::json table = nlohmann::json::array();
     for (const Row& r : rows) {
       table.push_back({{"world", r.world},
-                       {"robot", r.robot},
+                       {"robot", vehicle_label(r.robot)},
                        {"runs", r.runs},
                        {"complete", r.complete},
                        {"collisions", r.collisions},
@@ -344,9 +356,10 @@ void register_bench_explore_command(CLI::App& bench) {
       ->check(CLI::IsMember({"meandros", "labyrinth", "rooms", ""}))
       ->capture_default_str();
   cmd->add_option("--map", o->maps, "A MovingAI .map or ROS .yaml file to explore too (repeat)");
-  cmd->add_option("--robots", o->robots, "Robots")
+  cmd->add_option("--robots", o->robots,
+                  "Vehicles: dd-vel, dd-accel, car, or parameter files (.yaml)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"dd-vel", "dd-accel", "car"}))
+      ->check(CLI::IsMember({"dd-vel", "dd-accel", "car"}) | CLI::ExistingFile)
       ->capture_default_str();
   cmd->add_option("--seeds", o->seeds, "Seeds per world and robot")
       ->check(CLI::Range(1U, 1000U))
