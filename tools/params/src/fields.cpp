@@ -133,7 +133,7 @@ using Ex = ExplorationParams;
 using Fr = FrontierConfig;
 constexpr auto kExploration = std::to_array<Field>({
     {"sensing_radius_m", member<&G::exploration, &Ex::sensing_radius_m>,
-     "d_max of the path weight; auto: a tenth of the map", 0.0},
+     "d_max of the path weight; auto: sensor.range_m", 0.0},
     {"frontier", nullptr, "grouping and scoring of the frontier cells"},
     {"frontier.approach_range_m", member<&G::exploration, &Ex::frontier, &Fr::approach_range_m>,
      "how close the reference point must come to a frontier cell"},

@@ -40,7 +40,7 @@ struct SensorParams {
 };
 
 struct ExplorationParams {
-  double sensing_radius_m = 0.0;  // d_max of the path weight; 0: "auto", a tenth of the map
+  double sensing_radius_m = 0.0;  // d_max of the path weight; 0: "auto", sensor.range_m
   // Grouping and scoring of frontier cells; clearance_m is the planner's and not a parameter.
   FrontierConfig frontier;
   double give_up_s = 60.0;  // a frontier target not approached for this long is given up
