@@ -22,6 +22,7 @@
 
 #include "child.hpp"
 #include "commands.hpp"
+#include "grip/params/params.hpp"
 #include "dds_config.hpp"
 #include "report_file.hpp"
 #include "stats.hpp"
@@ -37,7 +38,7 @@ struct BenchExploreOptions {
   unsigned seeds = 10;
   std::uint64_t first_seed = 1;
   bool lockstep = false;
-  std::uint32_t lockstep_edges = kDefaultLockstepEdges;
+  std::uint32_t lockstep_edges = params::PlannerParams{}.lockstep_edges;
   double time_scale = kDefaultTimeScale;
   double max_sim_time_s = kDefaultMaxSimTimeS;
   bool no_safety = false;

@@ -6,12 +6,11 @@
 
 namespace grip::tools {
 
-// Exploration defaults shared by `grip explore`, `grip sim`, `grip planner` and
-// `grip bench explore`.
+// Exploration defaults shared by `grip explore`, `grip sim` and `grip bench explore` (the
+// planner's own are the parameter file's).
 inline constexpr double kDefaultTimeScale =
     2.0;  // at 4 the planner runs short of budget on 2 cores
 inline constexpr double kDefaultMaxSimTimeS = 1800.0;  // the car needs up to about 1,000 s
-inline constexpr std::uint32_t kDefaultLockstepEdges = 1000;
 
 void register_scene_command(CLI::App& app);
 void register_plan_command(CLI::App& app);
