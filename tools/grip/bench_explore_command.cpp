@@ -22,8 +22,8 @@
 
 #include "child.hpp"
 #include "commands.hpp"
-#include "grip/params/params.hpp"
 #include "dds_config.hpp"
+#include "grip/params/params.hpp"
 #include "report_file.hpp"
 #include "stats.hpp"
 
