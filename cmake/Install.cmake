@@ -29,7 +29,7 @@ install(FILES ${PROJECT_SOURCE_DIR}/platform/systemd/grip-planner.env
 # The man page, from `grip --help` and every subcommand's (help2man, Debian's). A sanitized
 # build does not make one: it is never installed.
 find_program(GRIP_HELP2MAN help2man)
-if(GRIP_HELP2MAN AND NOT GRIP_SANITIZE)
+if(GRIP_HELP2MAN AND NOT GRIP_SANITIZE AND NOT GRIP_SANITIZE_THREAD)
   set(GRIP_MAN_PAGE ${CMAKE_BINARY_DIR}/man/grip.1)
   add_custom_command(
     OUTPUT ${GRIP_MAN_PAGE} ${GRIP_MAN_PAGE}.gz
