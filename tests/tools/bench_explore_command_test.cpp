@@ -28,8 +28,8 @@ TEST(BenchExploreCommand, RunsEveryWorldRobotAndSeedAndTabulatesThem) {
   const CommandRun r = grip::testing::run_grip(
       "bench explore --scenes '' --map " +
       grip::testing::write_small_room_map("grip-bench-explore-room.map") + " --robots dd-vel," +
-      slow + " --seeds 2 --lockstep --max-sim-time 300 --jobs 2 --domain 85 --out " + out_dir +
-      " --json " + json);
+      slow + " --seeds 2 --lockstep --max-sim-time 300 --jobs 2 --out " + out_dir + " --json " +
+      json);
   ASSERT_EQ(r.status, 0) << r.output;
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -52,6 +52,9 @@ TEST(BenchExploreCommand, RunsEveryWorldRobotAndSeedAndTabulatesThem) {
   std::ifstream slow_report(j.at("runs")[2].at("report").get<std::string>());
   const nlohmann::json slow_run = nlohmann::json::parse(slow_report);
   EXPECT_DOUBLE_EQ(slow_run.at("max_speed_m_s").get<double>(), 1.5);
+  // Without --domain every run is private to itself (tools/grip/private_link.hpp).
+  EXPECT_TRUE(slow_run.at("link").at("private").get<bool>()) << slow_run.at("link").dump();
+  EXPECT_EQ(slow_run.at("link").at("other_writers").get<int>(), 0) << slow_run.at("link").dump();
   EXPECT_NE(r.output.find("target (every run: 0 collisions, coverage >= 0.97): met"),
             std::string::npos)
       << r.output;

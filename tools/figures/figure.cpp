@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "grip/tools/atomic_file.hpp"
+
 namespace grip::tools {
 
 Result<Figure> Figure::create(int width_px, int height_px) {
@@ -38,12 +40,20 @@ Status Figure::write_png(const std::string& path) const {
 
 Status write_png(cairo_surface_t* surface, const std::string& path) {
   cairo_surface_flush(surface);
-  const cairo_status_t status = cairo_surface_write_to_png(surface, path.c_str());
+  // Whole or not at all (atomic_file.hpp): encoded into a temporary file, then renamed.
+  auto file = AtomicFile::create(path);
+  if (!file) return file.error();
+  const auto to_file = [](void* closure, const unsigned char* data, unsigned int length) {
+    return std::fwrite(data, 1, length, static_cast<std::FILE*>(closure)) == length
+               ? CAIRO_STATUS_SUCCESS
+               : CAIRO_STATUS_WRITE_ERROR;
+  };
+  const cairo_status_t status = cairo_surface_write_to_png_stream(surface, to_file, file->stream());
   if (status != CAIRO_STATUS_SUCCESS) {
     return Error{ErrorCode::kIo,
                  "cannot write PNG '" + path + "': " + cairo_status_to_string(status)};
   }
-  return Ok{};
+  return file->commit();
 }
 
 double draw_text(cairo_t* cr, const std::string& text, double x_px, double y_px, double size_px,

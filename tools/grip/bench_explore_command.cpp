@@ -1,5 +1,6 @@
 // `grip bench explore`: exploration over scenes (and map files) x robots x seeds, the issue's
-// matrix, each run a `grip explore` child process on its own DDS domain with its report (and
+// matrix, each run a private `grip explore` child process (or on its own DDS domain with
+// --domain) with its report (and
 // picture and log) kept in one directory. Prints a line per run as it ends, then a table per
 // world and robot against the targets: every run with zero collisions and coverage of at least
 // 0.97 (and how many ended complete: no reachable frontier left), or with --no-safety, how
@@ -15,6 +16,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -43,7 +45,9 @@ struct BenchExploreOptions {
   double max_sim_time_s = kDefaultMaxSimTimeS;
   bool no_safety = false;
   unsigned jobs = 1;
-  unsigned domain = 120;  // runs use domain, domain + 1, ... (one per job)
+  // Unset: every run private (tools/grip/private_link.hpp); set: runs use domain, domain + 1,
+  // ... (one per job), shared with whatever else is on them.
+  std::optional<unsigned> domain;
   std::string out_dir = "bench-explore";
   std::string json;
   bool images = false;
@@ -74,7 +78,7 @@ std::string vehicle_label(const std::string& robot) {
 }
 
 std::vector<std::string> explore_args(const BenchExploreOptions& o, const Run& r,
-                                      const std::string& self, unsigned domain) {
+                                      const std::string& self, std::optional<unsigned> domain) {
   std::vector<std::string> args{self,
                                 "explore",
                                 r.is_map ? "--map" : "--scene",
@@ -85,10 +89,13 @@ std::vector<std::string> explore_args(const BenchExploreOptions& o, const Run& r
                                 std::to_string(r.seed),
                                 "--max-sim-time",
                                 std::to_string(o.max_sim_time_s),
-                                "--domain",
-                                std::to_string(domain),
                                 "--report",
                                 o.out_dir + "/" + r.stem + ".json"};
+  if (domain) {
+    args.insert(args.end(), {"--domain", std::to_string(*domain)});
+  } else {
+    args.emplace_back("--private");  // even with a parameter file that names a domain
+  }
   if (o.lockstep) {
     args.insert(args.end(), {"--lockstep", "--lockstep-edges", std::to_string(o.lockstep_edges)});
   } else {
@@ -219,8 +226,8 @@ void print_table(const BenchExploreOptions& o, const std::vector<Row>& rows) {
 }
 
 int run_bench(const BenchExploreOptions& o) {
-  if (o.domain + std::max(1U, o.jobs) - 1 > kMaxDomainId) {
-    std::cerr << "grip bench explore: --domain " << o.domain << " with --jobs " << o.jobs
+  if (o.domain && *o.domain + std::max(1U, o.jobs) - 1 > kMaxDomainId) {
+    std::cerr << "grip bench explore: --domain " << *o.domain << " with --jobs " << o.jobs
               << " would use domains above " << kMaxDomainId << "\n";
     return 2;
   }
@@ -277,8 +284,10 @@ int run_bench(const BenchExploreOptions& o) {
       Run& r = runs[i];
       const std::string report = o.out_dir + "/" + r.stem + ".json";
       std::filesystem::remove(report, ec);
-      auto child = Child::spawn(explore_args(o, r, *self, o.domain + slot), {},
-                                o.out_dir + "/" + r.stem + ".log", true);
+      auto child = Child::spawn(
+          explore_args(o, r, *self,
+                       o.domain ? std::optional<unsigned>(*o.domain + slot) : std::nullopt),
+          {}, o.out_dir + "/" + r.stem + ".log", true);
       if (child) r.exit_status = child->wait();
       try {
         std::ifstream in(report);
@@ -380,9 +389,9 @@ void register_bench_explore_command(CLI::App& bench) {
   cmd->add_option("--jobs", o->jobs, "Runs at a time")
       ->check(CLI::Range(1U, 64U))
       ->capture_default_str();
-  cmd->add_option("--domain", o->domain, "First DDS domain id (one per job)")
-      ->check(CLI::Range(0U, kMaxDomainId))
-      ->capture_default_str();
+  cmd->add_option("--domain", o->domain,
+                  "First DDS domain id (one per job; default: every run private to itself)")
+      ->check(CLI::Range(0U, kMaxDomainId));
   cmd->add_option("--out", o->out_dir, "Directory for every run's report and log")
       ->capture_default_str();
   cmd->add_flag("--images", o->images, "Also draw every run's picture into --out");

@@ -15,19 +15,18 @@ double us(std::int64_t ns) { return static_cast<double>(ns) * 1e-3; }
 }  // namespace
 
 Result<CycleTrace> CycleTrace::open(const std::string& path) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  if (file == nullptr) {
-    return Error{ErrorCode::kIo,
-                 "--cycle-trace: cannot write '" + path + "': " + std::strerror(errno)};
-  }
+  // Written to a temporary file beside `path`, renamed into place by close().
+  auto opened = AtomicFile::create(path);
+  if (!opened) return Error{ErrorCode::kIo, "--cycle-trace: " + opened.error().message};
+  auto file = std::make_unique<AtomicFile>(std::move(opened).value());
   // Times in microseconds; release_ms from the first traced cycle's release.
   std::fputs(
       "cycle,release_ms,wake_us,prepare_us,retain_us,grow_us,commit_us,commit_reserve_us,"
       "compute_us,lateness_us,missed,skipped,restarted,committed,kept_previous,"
       "plan_available,pool_exhausted,edges_added,edges_retained,tree_edges,plan_duration_s,"
       "retain_status,restart_cause\n",
-      file);
-  return CycleTrace(path, file);
+      file->stream());
+  return CycleTrace(std::move(file));
 }
 
 void CycleTrace::write(const rt::CycleRecord& r) {
@@ -37,7 +36,7 @@ void CycleTrace::write(const rt::CycleRecord& r) {
   const std::string_view retain_status = retain_status_name(o.retain_status);
   const std::string_view restart_cause = rt::restart_cause_name(o.restart_cause);
   std::fprintf(
-      file_.get(),
+      file_->stream(),
       "%llu,%.3f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%d,%d,%d,%d,%d,%d,%d,%llu,%u,%u,%.3f,%"
       ".*s,%.*s\n",
       static_cast<unsigned long long>(r.cycle),
@@ -52,10 +51,9 @@ void CycleTrace::write(const rt::CycleRecord& r) {
 
 Status CycleTrace::close() {
   if (!file_) return Ok{};
-  std::FILE* file = file_.release();
-  const bool failed = std::ferror(file) != 0;
-  if (std::fclose(file) != 0 || failed) {
-    return Error{ErrorCode::kIo, "--cycle-trace: writing '" + path_ + "' failed"};
+  const std::unique_ptr<AtomicFile> file = std::move(file_);
+  if (Status s = file->commit(); !s) {
+    return Error{ErrorCode::kIo, "--cycle-trace: " + s.error().message};
   }
   return Ok{};
 }

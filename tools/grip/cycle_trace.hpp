@@ -10,26 +10,24 @@
 
 #include "grip/common/result.hpp"
 #include "grip/rt/periodic_loop.hpp"
+#include "grip/tools/atomic_file.hpp"
 
 namespace grip::tools {
 
 class CycleTrace {
  public:
-  // Creates (truncates) the file and writes the header; an error names the file.
+  // Opens the file and writes the header; an error names the file. The rows go to a temporary
+  // file beside it, which close() renames into place: the file appears whole or not at all.
   static Result<CycleTrace> open(const std::string& path);
   // Appends a row; a write error is reported once by close().
   void write(const rt::CycleRecord& record);
-  // Flushes and closes; an error names the file.
+  // Flushes, closes and renames it into place; an error names the file.
   Status close();
 
  private:
-  struct FileCloser {
-    void operator()(std::FILE* f) const noexcept { std::fclose(f); }
-  };
-  CycleTrace(std::string path, std::FILE* file) : path_(std::move(path)), file_(file) {}
+  explicit CycleTrace(std::unique_ptr<AtomicFile> file) : file_(std::move(file)) {}
 
-  std::string path_;
-  std::unique_ptr<std::FILE, FileCloser> file_;
+  std::unique_ptr<AtomicFile> file_;
   std::int64_t first_release_ns_ = -1;
 };
 

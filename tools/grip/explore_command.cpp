@@ -29,8 +29,10 @@
 #include "grip/sim/map_file.hpp"
 #include "grip/sim/sim_participant.hpp"
 #include "grip/sim/start_pose.hpp"
+#include "grip/tools/atomic_file.hpp"
 #include "grip/vehicles/vehicle_params.hpp"
 #include "params_options.hpp"
+#include "private_link.hpp"
 #include "render.hpp"
 #include "report_file.hpp"
 #include "speed_profile.hpp"
@@ -52,7 +54,8 @@ struct ExploreOptions {
   double drop_plans = 0.0;
   std::string report;
   std::string image;
-  std::string cycle_trace;  // grip explore: the planner's cycles, as CSV
+  std::string cycle_trace;    // grip explore: the planner's cycles, as CSV
+  bool private_link = false;  // grip explore --private
 };
 
 struct World {
@@ -199,7 +202,8 @@ Status draw_run(const World& world, const sim::SimRunReport& r,
 // `planner`: the in-process planner's report, if it ran and ended well.
 int finish(const ExploreOptions& o, const params::GripParams& p, const World& world,
            const Result<sim::SimRunReport>& run, const rt::dds::PlannerTreePicture& tree,
-           const rt::dds::PlannerParticipantReport* planner, const char* command) {
+           const rt::dds::PlannerParticipantReport* planner, const nlohmann::json& link,
+           const char* command) {
   if (!run) {
     std::cerr << command << ": " << run.error().message << "\n";
     return 1;
@@ -225,6 +229,7 @@ int finish(const ExploreOptions& o, const params::GripParams& p, const World& wo
                          {"policy_fallback_reason", planner->policy_fallback},
                          {"publish_thread_policy", planner->publish_policy}};
     }
+    if (!link.is_null()) j["link"] = link;
     if (!write_report(command, o.report, std::move(j), 1)) return 1;
   }
   if (!o.image.empty()) {
@@ -267,6 +272,13 @@ Status validate(const ExploreOptions& o) {
                             ")");
   }
   if (!(o.max_sim_time_s > 0.0)) return invalid_argument("--max-sim-time must be > 0");
+  // An output that cannot be written is refused now, not after the run.
+  const std::pair<const std::string*, const char*> outputs[] = {
+      {&o.report, "--report"}, {&o.image, "--image"}, {&o.cycle_trace, "--cycle-trace"}};
+  for (const auto& [path, option] : outputs) {
+    if (path->empty()) continue;
+    if (Status s = check_writable(*path, option); !s) return s;
+  }
   return Ok{};
 }
 
@@ -310,8 +322,14 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     }
     trace.emplace(std::move(opened).value());
   }
+  // grip explore is private unless told where its topics are (private_link.hpp); grip sim
+  // talks to a planner elsewhere, on the loopback configuration.
+  const ExploreLink link =
+      with_planner ? choose_explore_link(o.params, *p, o.private_link) : ExploreLink{false, {}, {}};
+  std::optional<LinkWatch> watch;
   if (with_planner) {
     rt::dds::PlannerParticipantConfig pc = planner_participant_config(*p);
+    pc.dds_config = link.dds_config;
     if (trace) pc.on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
     pc.seed = o.seed;
     pc.startup_timeout = std::chrono::seconds(30);
@@ -321,6 +339,12 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
       return 2;
     }
     planner = std::move(created).value();
+    auto watching = LinkWatch::start(p->link.domain, link.dds_config, p->link.topic_prefix);
+    if (!watching) {
+      std::cerr << command << ": " << watching.error().message << "\n";
+      return 2;
+    }
+    watch.emplace(std::move(watching).value());
   }
   // A planner that fails before the simulation has finished (at start-up, say) ends the run
   // as an error at once, with its reason, rather than leaving the vehicle waiting for plans.
@@ -336,6 +360,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     });
   }
   sim::SimRunConfig config = sim_config(o, *p, *world);
+  config.dds_config = link.dds_config;
   config.on_finished = [&] {
     sim_finished.store(true);
     if (planner) planner->request_stop();
@@ -363,7 +388,22 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
       planner ? planner->last_tree() : rt::dds::PlannerTreePicture{};
   const rt::dds::PlannerParticipantReport* planner_report =
       planner_result && planner_result->ok() ? &planner_result->value() : nullptr;
-  return finish(o, *p, *world, run, tree, planner_report, command);
+  nlohmann::json link_section;
+  if (watch) {
+    auto other = watch->other_writers();
+    if (!other) {
+      std::cerr << command << ": " << other.error().message << "\n";
+      return 1;
+    }
+    nlohmann::json rejected = {{"plans", run ? run->plans_rejected : 0}};
+    if (planner_report != nullptr) {
+      rejected["vehicle_states"] = planner_report->rejected_vehicle_state;
+      rejected["map_updates"] = planner_report->rejected_map_update;
+      rejected["goals"] = planner_report->rejected_goal;
+    }
+    link_section = link_json(p->link, link, *other, rejected);
+  }
+  return finish(o, *p, *world, run, tree, planner_report, link_section, command);
 }
 
 void add_common_options(CLI::App* cmd, ExploreOptions& o) {
@@ -396,11 +436,17 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
 void register_explore_commands(CLI::App& app) {
   auto explore = std::make_shared<ExploreOptions>();
   CLI::App* e = app.add_subcommand(
-      "explore", "Explore an unknown workspace: simulator and planner as two DDS participants");
+      "explore",
+      "Explore an unknown workspace: simulator and planner as two DDS participants, private to "
+      "the run unless --domain, --topic-prefix or the parameter file's link section place it");
   add_common_options(e, *explore);
   add_lockstep_options(*e, explore->params);
   e->add_option("--cycle-trace", explore->cycle_trace,
                 "Write every planning cycle's timing and outcome here (CSV)");
+  e->add_flag("--private", explore->private_link,
+              "Keep the run's DDS traffic to itself even with --domain, --topic-prefix or a "
+              "parameter file's link section (the default without them: a discovery tag of "
+              "its own, so other runs are never discovered)");
   e->callback([explore]() {
     if (const int rc = run_explore(*explore, true); rc != 0) throw CLI::RuntimeError(rc);
   });

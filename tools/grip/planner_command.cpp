@@ -21,6 +21,7 @@
 #include "grip/platform/overrun_watcher.hpp"
 #include "grip/platform/service_notifier.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
+#include "grip/tools/atomic_file.hpp"
 #include "grip/tools/log.hpp"
 #include "latency_json.hpp"
 #include "params_options.hpp"
@@ -127,6 +128,10 @@ int run_planner(const PlannerOptions& o) {
   auto config = to_config(o, *p);
   if (!config) {
     log.error(config.error().message);
+    return 2;
+  }
+  if (Status s = o.report.empty() ? Status(Ok{}) : check_writable(o.report, "--report"); !s) {
+    log.error(s.error().message);  // refused now, not after hours of planning
     return 2;
   }
   // Before any thread, Cyclone's included: every thread must block SIGXCPU (overrun_watcher.hpp).

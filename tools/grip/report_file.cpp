@@ -1,10 +1,10 @@
 #include "report_file.hpp"
 
-#include <fstream>
 #include <iostream>
 
 #include "build_info.hpp"
 #include "grip/platform/machine.hpp"
+#include "grip/tools/atomic_file.hpp"
 
 namespace grip::tools {
 
@@ -23,11 +23,9 @@ nlohmann::json produced_by_json() {
 bool write_report(std::string_view command, const std::string& path, nlohmann::json report,
                   int indent) {
   if (report.is_object()) report["produced_by"] = produced_by_json();
-  std::ofstream out(path);
-  out << report.dump(indent) << "\n";
-  out.close();
-  if (!out) {
-    std::cerr << command << ": cannot write '" << path << "'\n";
+  // Whole or not at all: a crash mid-write never leaves half a JSON (atomic_file.hpp).
+  if (Status s = write_file_atomically(path, report.dump(indent) + "\n"); !s) {
+    std::cerr << command << ": " << s.error().message << "\n";
     return false;
   }
   return true;

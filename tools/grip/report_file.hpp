@@ -13,8 +13,9 @@ namespace grip::tools {
 // {"grip": {"version", "revision"}, "machine": {"hostname", "kernel", ...}}.
 nlohmann::json produced_by_json();
 
-// Writes `report` to `path` (with `indent`), a JSON object gaining the "produced_by" section.
-// On failure says "<command>: cannot write '<path>'" on stderr and returns false.
+// Writes `report` to `path` (with `indent`), a JSON object gaining the "produced_by" section,
+// whole or not at all (a temporary file renamed into place). On failure says
+// "<command>: cannot write '<path>': <why>" on stderr and returns false.
 bool write_report(std::string_view command, const std::string& path, nlohmann::json report,
                   int indent = 2);
 

@@ -31,6 +31,7 @@
 #include "grip/rt/periodic_loop.hpp"
 #include "grip/rt/replanning_cycle.hpp"
 #include "grip/rt/triple_buffer.hpp"
+#include "grip/tools/atomic_file.hpp"
 #include "grip/tools/load_generator.hpp"
 #include "latency_json.hpp"
 #include "params_options.hpp"
@@ -71,6 +72,7 @@ Status validate(const StressOptions& o) {
   if (o.max_miss_rate != -1.0 && (!(o.max_miss_rate >= 0.0) || o.max_miss_rate > 1.0)) {
     return bad("--max-miss-rate must be in [0, 1] (got " + std::to_string(o.max_miss_rate) + ")");
   }
+  if (!o.report.empty()) return check_writable(o.report, "--report");
   return Ok{};
 }
 

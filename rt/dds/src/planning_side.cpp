@@ -64,6 +64,7 @@ Status PlanningSide<V>::prepare(const VehicleSample& state, bool explore) {
   auto driver = ExplorationDriver<V>::create(session.grid(), exploration, session.sizing().planner);
   if (!driver) return driver.error();
   driver_.emplace(std::move(driver).value());
+  driver_ready_.store(true, std::memory_order_release);
   return Ok{};
 }
 

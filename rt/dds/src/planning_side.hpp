@@ -61,7 +61,9 @@ class PlanningSide {
   CycleOutcome lockstep_cycle(const VehicleSample& state, const MapChanges& changes,
                               std::int64_t start_ns) noexcept;
   // The target thread: chooses a requested frontier target; false when none was requested.
-  bool serve_target_request() noexcept { return driver_ && driver_->serve_request(); }
+  bool serve_target_request() noexcept {
+    return driver_ready_.load(std::memory_order_acquire) && driver_->serve_request();
+  }
 
   // After the run.
   void fill_report(PlannerParticipantReport& report) const;
@@ -81,6 +83,8 @@ class PlanningSide {
   const VehicleClock& clock_;
   std::optional<ReplanningSession<V>> session_;
   std::optional<ExplorationDriver<V>> driver_;  // created at start-up: a goal may never come
+  // driver_ exists: published by prepare() to the target thread, which polls from the start.
+  std::atomic<bool> driver_ready_{false};
   bool exploring_ = false;                      // no goal was given (yet)
   double heading_x_m_ = 0.0;                    // the goal, or the frontier target
   double heading_y_m_ = 0.0;

@@ -21,6 +21,7 @@
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "plan.h"
+#include "private_topics.hpp"
 #include "test_paths.hpp"
 
 namespace grip::platform::dds {
@@ -36,8 +37,8 @@ TEST(DdsCrossProcess, PlansCrossLoopbackAndAKilledWriterIsNoticed) {
 
   Result<Participant> participant = Participant::create(kDomain);
   ASSERT_TRUE(participant.ok()) << participant.error().message;
-  auto reader =
-      Reader<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, "grip_plan", plan_qos());
+  auto reader = Reader<grip_msg_Plan>::create(
+      *participant, &grip_msg_Plan_desc, ::grip::testing::private_topic("grip_plan"), plan_qos());
   ASSERT_TRUE(reader.ok()) << reader.error().message;
 
   auto child = grip::testing::ChildProcess::spawn({writer_program});

@@ -13,6 +13,7 @@
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "map_update.h"
+#include "private_topics.hpp"
 
 namespace grip::platform::dds {
 namespace {
@@ -45,9 +46,11 @@ TEST(DdsGoalMap, GoalRoundTrips) {
   ASSERT_TRUE(a.ok()) << a.error().message;
   Result<Participant> b = Participant::create(kDomain);
   ASSERT_TRUE(b.ok()) << b.error().message;
-  auto reader = Reader<grip_msg_Goal>::create(*b, &grip_msg_Goal_desc, "grip_goal", reliable_qos());
+  auto reader = Reader<grip_msg_Goal>::create(
+      *b, &grip_msg_Goal_desc, ::grip::testing::private_topic("grip_goal"), reliable_qos());
   ASSERT_TRUE(reader.ok()) << reader.error().message;
-  auto writer = Writer<grip_msg_Goal>::create(*a, &grip_msg_Goal_desc, "grip_goal", reliable_qos());
+  auto writer = Writer<grip_msg_Goal>::create(
+      *a, &grip_msg_Goal_desc, ::grip::testing::private_topic("grip_goal"), reliable_qos());
   ASSERT_TRUE(writer.ok()) << writer.error().message;
   ASSERT_TRUE(writer->wait_for_readers(1, 5s).ok());
 
@@ -74,11 +77,13 @@ TEST(DdsGoalMap, MapUpdateWith64x64PatchRoundTrips) {
   ASSERT_TRUE(a.ok()) << a.error().message;
   Result<Participant> b = Participant::create(kDomain);
   ASSERT_TRUE(b.ok()) << b.error().message;
-  auto reader = Reader<grip_msg_MapUpdate>::create(*b, &grip_msg_MapUpdate_desc, "grip_map_update",
-                                                   reliable_qos());
+  auto reader = Reader<grip_msg_MapUpdate>::create(
+      *b, &grip_msg_MapUpdate_desc, ::grip::testing::private_topic("grip_map_update"),
+      reliable_qos());
   ASSERT_TRUE(reader.ok()) << reader.error().message;
-  auto writer = Writer<grip_msg_MapUpdate>::create(*a, &grip_msg_MapUpdate_desc, "grip_map_update",
-                                                   reliable_qos());
+  auto writer = Writer<grip_msg_MapUpdate>::create(
+      *a, &grip_msg_MapUpdate_desc, ::grip::testing::private_topic("grip_map_update"),
+      reliable_qos());
   ASSERT_TRUE(writer.ok()) << writer.error().message;
   ASSERT_TRUE(writer->wait_for_readers(1, 5s).ok());
 

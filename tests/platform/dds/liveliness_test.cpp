@@ -8,6 +8,7 @@
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "private_topics.hpp"
 #include "vehicle_state.h"
 
 namespace grip::platform::dds {
@@ -26,11 +27,13 @@ TEST(DdsLiveliness, ReaderNoticesWriterParticipantDeleted) {
   ASSERT_TRUE(writer_side.ok()) << writer_side.error().message;
   Result<Participant> reader_side = Participant::create(kDomain);
   ASSERT_TRUE(reader_side.ok()) << reader_side.error().message;
-  auto reader = Reader<grip_msg_VehicleState>::create(*reader_side, &grip_msg_VehicleState_desc,
-                                                      "grip_vehicle_state", qos);
+  auto reader = Reader<grip_msg_VehicleState>::create(
+      *reader_side, &grip_msg_VehicleState_desc,
+      ::grip::testing::private_topic("grip_vehicle_state"), qos);
   ASSERT_TRUE(reader.ok()) << reader.error().message;
-  auto writer = Writer<grip_msg_VehicleState>::create(*writer_side, &grip_msg_VehicleState_desc,
-                                                      "grip_vehicle_state", qos);
+  auto writer = Writer<grip_msg_VehicleState>::create(
+      *writer_side, &grip_msg_VehicleState_desc,
+      ::grip::testing::private_topic("grip_vehicle_state"), qos);
   ASSERT_TRUE(writer.ok()) << writer.error().message;
   ASSERT_TRUE(reader->wait_for_writers(1, 5s).ok());
 

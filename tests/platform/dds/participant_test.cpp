@@ -11,6 +11,7 @@
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "private_topics.hpp"
 
 namespace grip::platform::dds {
 namespace {
@@ -71,7 +72,8 @@ TEST(DdsErrors, InvalidQosIsRejectedBeforeDds) {
   ASSERT_TRUE(participant.ok()) << participant.error().message;
   Qos qos;
   qos.history_depth = 0;
-  auto writer = Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc, "grip_goal", qos);
+  auto writer = Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc,
+                                              ::grip::testing::private_topic("grip_goal"), qos);
   ASSERT_FALSE(writer.ok());
   EXPECT_NE(writer.error().message.find("history_depth"), std::string::npos);
 }
@@ -92,8 +94,9 @@ TEST(DdsErrors, CheckMapsCodesAndKeepsTheText) {
 TEST(DdsEntity, DoubleDeleteIsHarmless) {
   Result<Participant> participant = Participant::create(59);
   ASSERT_TRUE(participant.ok()) << participant.error().message;
-  Entity topic(
-      dds_create_topic(participant->get(), &grip_msg_Goal_desc, "grip_goal", nullptr, nullptr));
+  Entity topic(dds_create_topic(participant->get(), &grip_msg_Goal_desc,
+                                ::grip::testing::private_topic("grip_goal").c_str(), nullptr,
+                                nullptr));
   ASSERT_TRUE(topic.valid());
   const dds_entity_t handle = topic.get();
   EXPECT_TRUE(topic.reset().ok());
@@ -108,11 +111,11 @@ TEST(DdsEntity, DoubleDeleteIsHarmless) {
 TEST(DdsEntity, ChildrenOutlivingTheirParticipantDestructCleanly) {
   Result<Participant> participant = Participant::create(60);
   ASSERT_TRUE(participant.ok()) << participant.error().message;
-  auto reader =
-      Reader<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc, "grip_goal", Qos{});
+  auto reader = Reader<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc,
+                                              ::grip::testing::private_topic("grip_goal"), Qos{});
   ASSERT_TRUE(reader.ok()) << reader.error().message;
-  auto writer =
-      Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc, "grip_goal", Qos{});
+  auto writer = Writer<grip_msg_Goal>::create(*participant, &grip_msg_Goal_desc,
+                                              ::grip::testing::private_topic("grip_goal"), Qos{});
   ASSERT_TRUE(writer.ok()) << writer.error().message;
   ASSERT_TRUE(participant->reset().ok());  // deletes topic, reader and writer with it
   // The reader's handle is gone: calls report an error instead of crashing.
@@ -125,8 +128,8 @@ TEST(DdsEntity, ChildrenOutlivingTheirParticipantDestructCleanly) {
 TEST(DdsEntity, MoveTransfersOwnership) {
   Result<Participant> participant = Participant::create(61);
   ASSERT_TRUE(participant.ok()) << participant.error().message;
-  Entity a(
-      dds_create_topic(participant->get(), &grip_msg_Goal_desc, "grip_goal", nullptr, nullptr));
+  Entity a(dds_create_topic(participant->get(), &grip_msg_Goal_desc,
+                            ::grip::testing::private_topic("grip_goal").c_str(), nullptr, nullptr));
   const dds_entity_t handle = a.get();
   Entity b(std::move(a));
   EXPECT_FALSE(a.valid());  // NOLINT(bugprone-use-after-move)

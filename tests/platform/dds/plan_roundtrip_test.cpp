@@ -11,6 +11,7 @@
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "plan.h"
+#include "private_topics.hpp"
 
 namespace grip::platform::dds {
 namespace {
@@ -39,11 +40,11 @@ TEST(DdsPlanRoundTrip, TwentyPlansOf300StepsArriveIntactAndInOrder) {
   Result<Participant> receiver = Participant::create(kDomain);
   ASSERT_TRUE(receiver.ok()) << receiver.error().message;
 
-  Result<Reader<grip_msg_Plan>> reader =
-      Reader<grip_msg_Plan>::create(*receiver, &grip_msg_Plan_desc, "grip_plan", plan_qos());
+  Result<Reader<grip_msg_Plan>> reader = Reader<grip_msg_Plan>::create(
+      *receiver, &grip_msg_Plan_desc, ::grip::testing::private_topic("grip_plan"), plan_qos());
   ASSERT_TRUE(reader.ok()) << reader.error().message;
-  Result<Writer<grip_msg_Plan>> writer =
-      Writer<grip_msg_Plan>::create(*sender, &grip_msg_Plan_desc, "grip_plan", plan_qos());
+  Result<Writer<grip_msg_Plan>> writer = Writer<grip_msg_Plan>::create(
+      *sender, &grip_msg_Plan_desc, ::grip::testing::private_topic("grip_plan"), plan_qos());
   ASSERT_TRUE(writer.ok()) << writer.error().message;
 
   Status matched = writer->wait_for_readers(1, 5s);
@@ -102,8 +103,8 @@ TEST(DdsPlanRoundTrip, TwentyPlansOf300StepsArriveIntactAndInOrder) {
 TEST(DdsPlanRoundTrip, TakeOnEmptyReaderReturnsZeroWithoutBlocking) {
   Result<Participant> participant = Participant::create(kDomain + 10);
   ASSERT_TRUE(participant.ok()) << participant.error().message;
-  Result<Reader<grip_msg_Plan>> reader =
-      Reader<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, "grip_plan", plan_qos());
+  Result<Reader<grip_msg_Plan>> reader = Reader<grip_msg_Plan>::create(
+      *participant, &grip_msg_Plan_desc, ::grip::testing::private_topic("grip_plan"), plan_qos());
   ASSERT_TRUE(reader.ok()) << reader.error().message;
   SampleBuffer<grip_msg_Plan, 4> buffer(&grip_msg_Plan_desc);
   Result<std::size_t> taken = reader->take(buffer);

@@ -19,6 +19,7 @@
 #include "grip/link/vehicle_description.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "grip/rt/dds/planner_participant.hpp"
+#include "private_topics.hpp"
 #include "running_planner.hpp"
 #include "vehicle_side.hpp"
 
@@ -60,11 +61,11 @@ TEST(PlannerDescription, ACarWithAnotherWheelbaseIsRefusedAndNothingIsPlanned) {
   constexpr pdds::DomainId kDomain = 97;
   CarParams longer;
   longer.wheelbase_m = 0.9;
-  auto vehicle = VehicleSide::create(kDomain, longer, "wheelbase");
+  auto vehicle = VehicleSide::create(kDomain, longer, ::grip::testing::private_topic("wheelbase"));
   ASSERT_NE(vehicle, nullptr);
   ASSERT_TRUE(vehicle->publish_goal());
 
-  RunningPlanner planner(car_planner(kDomain, "wheelbase"));
+  RunningPlanner planner(car_planner(kDomain, ::grip::testing::private_topic("wheelbase")));
   ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
   const std::size_t plans = plans_until_returned(planner, *vehicle, 20s);
   ASSERT_TRUE(planner.returned) << "the planner did not refuse the vehicle";
@@ -80,10 +81,11 @@ TEST(PlannerDescription, ACarWithAnotherWheelbaseIsRefusedAndNothingIsPlanned) {
 
 TEST(PlannerDescription, AMatchingCarIsPlannedForAsBefore) {
   constexpr pdds::DomainId kDomain = 97;
-  auto vehicle = VehicleSide::create(kDomain, CarParams{}, "matching");
+  auto vehicle =
+      VehicleSide::create(kDomain, CarParams{}, ::grip::testing::private_topic("matching"));
   ASSERT_NE(vehicle, nullptr);
   ASSERT_TRUE(vehicle->publish_goal());
-  RunningPlanner planner(car_planner(kDomain, "matching"));
+  RunningPlanner planner(car_planner(kDomain, ::grip::testing::private_topic("matching")));
   ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
   std::size_t plans = 0;
   EXPECT_TRUE(eventually(
@@ -147,9 +149,9 @@ class UndescribedVehicle {
 
 TEST(PlannerDescription, AVehicleThatDoesNotDescribeItselfTimesOutStartUpSayingSo) {
   constexpr pdds::DomainId kDomain = 97;
-  UndescribedVehicle vehicle(kDomain, "silent");
+  UndescribedVehicle vehicle(kDomain, ::grip::testing::private_topic("silent"));
   PlannerParticipantConfig config = planner_config(kDomain, 0.0);
-  config.topic_prefix = "silent";
+  config.topic_prefix = ::grip::testing::private_topic("silent");
   config.startup_timeout = 3s;
   RunningPlanner planner(config);
   ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
@@ -193,7 +195,8 @@ TEST(PlannerDescription, AVehicleDescribingItselfAnewWithOtherParametersStopsPla
   wider.half_axle_m = 0.3;
   auto participant = pdds::Participant::create(kDomain).value();
   auto description = link::publish_vehicle_description(
-      participant, link::TopicNames::create("").value(), link::LinkTiming{}, wider);
+      participant, link::TopicNames::create(::grip::testing::private_topic_prefix()).value(),
+      link::LinkTiming{}, wider);
   ASSERT_TRUE(description.ok()) << description.error().message;
 
   plans_until_returned(planner, *vehicle, 5s);

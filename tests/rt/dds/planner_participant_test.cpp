@@ -20,6 +20,7 @@
 #include "child_process.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "private_topics.hpp"
 #include "running_planner.hpp"
 #include "test_paths.hpp"
 #include "vehicle_side.hpp"
@@ -136,14 +137,17 @@ TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
   auto participant = platform::dds::Participant::create(kDomain).value();
   const LinkTiming timing;
   auto states = platform::dds::Writer<grip_msg_VehicleState>::create(
-                    participant, &grip_msg_VehicleState_desc, kVehicleStateTopic,
+                    participant, &grip_msg_VehicleState_desc,
+                    ::grip::testing::private_topic(kVehicleStateTopic),
                     vehicle_state_qos(timing, Endpoint::kWriter))
                     .value();
   auto maps = platform::dds::Writer<grip_msg_MapUpdate>::create(
-                  participant, &grip_msg_MapUpdate_desc, kMapUpdateTopic, map_update_qos(timing))
+                  participant, &grip_msg_MapUpdate_desc,
+                  ::grip::testing::private_topic(kMapUpdateTopic), map_update_qos(timing))
                   .value();
-  auto goals = platform::dds::Writer<grip_msg_Goal>::create(participant, &grip_msg_Goal_desc,
-                                                            kGoalTopic, goal_qos(timing))
+  auto goals = platform::dds::Writer<grip_msg_Goal>::create(
+                   participant, &grip_msg_Goal_desc, ::grip::testing::private_topic(kGoalTopic),
+                   goal_qos(timing))
                    .value();
 
   // Sends one bad sample and waits until the status counts it: one at a time, so that a
@@ -305,10 +309,11 @@ TEST(PlannerParticipant, AKilledControllerIsNoticedThroughLiveliness) {
 
   // The planner's status, watched from here.
   auto participant = platform::dds::Participant::create(kDomain).value();
-  auto status_reader = platform::dds::Reader<grip_msg_PlannerStatus>::create(
-                           participant, &grip_msg_PlannerStatus_desc, kPlannerStatusTopic,
-                           planner_status_qos(LinkTiming{}))
-                           .value();
+  auto status_reader =
+      platform::dds::Reader<grip_msg_PlannerStatus>::create(
+          participant, &grip_msg_PlannerStatus_desc,
+          ::grip::testing::private_topic(kPlannerStatusTopic), planner_status_qos(LinkTiming{}))
+          .value();
   platform::dds::SampleBuffer<grip_msg_PlannerStatus, 4> buffer(&grip_msg_PlannerStatus_desc);
   std::optional<grip_msg_PlannerStatus> status;
   const auto latest = [&] {

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "grip/rt/dds/planner_participant.hpp"
+#include "private_topics.hpp"
 #include "vehicle_side.hpp"
 
 namespace grip::rt::dds::testing {
@@ -17,6 +18,7 @@ namespace grip::rt::dds::testing {
 inline PlannerParticipantConfig planner_config(platform::dds::DomainId domain, double duration_s) {
   PlannerParticipantConfig config;
   config.domain = domain;
+  config.topic_prefix = ::grip::testing::private_topic_prefix();
   config.vehicle = default_vehicle_params(VehicleKind::kDdVelocity);
   config.cycle_s = 0.05;
   config.budget_s = 0.02;

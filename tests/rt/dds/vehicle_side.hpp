@@ -11,15 +11,16 @@
 #include "grip/platform/clock.hpp"
 #include "grip/scenes/scenes.hpp"
 #include "grip/vehicles/vehicle_params.hpp"
+#include "private_topics.hpp"
 
 namespace grip::link::testing {
 
 class VehicleSide {
  public:
   // The vehicle `vehicle` describes itself as, on topics with `topic_prefix`.
-  static std::unique_ptr<VehicleSide> create(platform::dds::DomainId domain,
-                                             const VehicleParams& vehicle,
-                                             const std::string& topic_prefix = "") {
+  static std::unique_ptr<VehicleSide> create(
+      platform::dds::DomainId domain, const VehicleParams& vehicle,
+      const std::string& topic_prefix = ::grip::testing::private_topic_prefix()) {
     Scene scene = make_scene("rooms").value();
     VehicleLinkConfig config;
     config.domain = domain;

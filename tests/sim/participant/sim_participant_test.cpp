@@ -18,6 +18,7 @@
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "private_topics.hpp"
 
 namespace grip::sim {
 namespace {
@@ -32,7 +33,8 @@ class HandPlanner {
  public:
   HandPlanner(pdds::DomainId domain, VehicleKind kind, std::array<double, 2> control)
       : kind_(kind), control_(control), participant_(pdds::Participant::create(domain).value()) {
-    const link::TopicNames topics = link::TopicNames::create("").value();
+    const link::TopicNames topics =
+        link::TopicNames::create(::grip::testing::private_topic_prefix()).value();
     const link::LinkTiming timing;
     states_.emplace(pdds::Reader<grip_msg_VehicleState>::create(
                         participant_, &grip_msg_VehicleState_desc, topics.vehicle_state,
@@ -127,6 +129,7 @@ SimRunReport run_with_hand_planner(pdds::DomainId domain, const VehicleParams& v
                                    std::optional<grip_msg_VehicleDescription>* described) {
   SimRunConfig config;
   config.domain = domain;
+  config.topic_prefix = ::grip::testing::private_topic_prefix();
   config.vehicle = vehicle;
   config.world = "room with a shelf";
   config.start_x_m = 2.0;

@@ -9,6 +9,7 @@
 #include "grip/platform/dds/participant.hpp"
 #include "grip/platform/dds/writer.hpp"
 #include "plan.h"
+#include "private_topics.hpp"
 
 int main() {
   using namespace grip::platform::dds;
@@ -18,8 +19,8 @@ int main() {
     std::fprintf(stderr, "plan_writer: %s\n", participant.error().message.c_str());
     return 1;
   }
-  auto writer =
-      Writer<grip_msg_Plan>::create(*participant, &grip_msg_Plan_desc, "grip_plan", plan_qos());
+  auto writer = Writer<grip_msg_Plan>::create(
+      *participant, &grip_msg_Plan_desc, ::grip::testing::private_topic("grip_plan"), plan_qos());
   if (!writer || !writer->wait_for_readers(1, 10s).ok()) {
     std::fprintf(stderr, "plan_writer: no writer or no reader matched\n");
     return 1;
