@@ -20,6 +20,15 @@ std::uint64_t new_incarnation() noexcept {
   return value;
 }
 
+bool stamp_lead_allowed(std::uint64_t stamp_ns, std::uint64_t last_stamp_ns,
+                        std::int64_t wall_since_ns) noexcept {
+  if (last_stamp_ns == 0 || stamp_ns <= last_stamp_ns) return true;
+  const double lead = static_cast<double>(stamp_ns - last_stamp_ns);
+  const double allowed = static_cast<double>(kMaxStampLeadNs) +
+                         1000.0 * static_cast<double>(wall_since_ns > 0 ? wall_since_ns : 0);
+  return lead <= allowed;
+}
+
 Peer IncarnationTracker::classify(std::uint64_t incarnation, std::int64_t now_ns) const noexcept {
   if (incarnation == 0) return Peer::kNone;
   if (followed_ == 0) return Peer::kNew;

@@ -273,7 +273,7 @@ Status PlannerParticipantFor<V>::start_up() {
   const std::int64_t timeout = config_.startup_timeout.count();
   std::optional<VehicleSample> state;
   std::optional<Goal> goal;
-  std::optional<std::int64_t> synced_at;  // when the map was first in sync
+  std::int64_t synced_at = -1;  // when the map was first in sync; -1: not yet
   std::string refusal;
   while (!stop_.load(std::memory_order_acquire)) {
     if (Status s = vehicle_accepted(); !s) return s;
@@ -285,7 +285,7 @@ Status PlannerParticipantFor<V>::start_up() {
       if (planning_->vehicle_incarnation() != 0) {
         reset_planning();
         state.reset();
-        synced_at.reset();
+        synced_at = -1;
       }
       planning_->set_vehicle(vehicle);
     }
@@ -306,19 +306,18 @@ Status PlannerParticipantFor<V>::start_up() {
     if (handoffs_.states->update() &&
         handoffs_.states->read_buffer().incarnation == planning_->vehicle_incarnation()) {
       state = handoffs_.states->read_buffer();
-      if (state.incarnation != planning_->vehicle_incarnation()) continue;  // replaced: ends
     }
     if (handoffs_.goals->update()) goal = handoffs_.goals->read_buffer();
     const bool in_sync = planning_->has_map() && planning_->map_in_sync();
-    if (in_sync && !synced_at) synced_at = platform::now_ns();
-    const bool explore = !goal && config_.explore_without_goal && synced_at &&
-                         platform::now_ns() - *synced_at >= config_.goal_grace.count();
+    if (in_sync && synced_at < 0) synced_at = platform::now_ns();
+    const bool explore = !goal && config_.explore_without_goal && synced_at >= 0 &&
+                         platform::now_ns() - synced_at >= config_.goal_grace.count();
     if (described && in_sync && state && (goal || explore)) {
       if (!planning_->prepared()) {
         if (Status s = planning_->prepare(*state, explore); !s) {
           refuse_map(receive_.geometry(), s.error());
           planning_->set_vehicle(vehicle);
-          synced_at.reset();
+          synced_at = -1;
           continue;
         }
         publish_.set_time_scale(planning_->time_scale());
@@ -445,6 +444,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
         continue;
       }
       state = handoffs_.states->read_buffer();
+      if (state.incarnation != planning_->vehicle_incarnation()) continue;  // replaced: ends
     }
     have_state = false;
     const std::int64_t start = platform::now_ns();

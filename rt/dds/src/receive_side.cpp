@@ -24,15 +24,6 @@ link::Verdict check_sample_freshness(const dds_sample_info_t& info,
 
 }  // namespace
 
-bool stamp_lead_allowed(std::uint64_t stamp_ns, std::uint64_t last_stamp_ns,
-                        std::int64_t wall_since_ns) noexcept {
-  if (last_stamp_ns == 0 || stamp_ns <= last_stamp_ns) return true;
-  const double lead = static_cast<double>(stamp_ns - last_stamp_ns);
-  const double allowed = static_cast<double>(kMaxStampLeadNs) +
-                         1000.0 * static_cast<double>(std::max<std::int64_t>(wall_since_ns, 0));
-  return lead <= allowed;
-}
-
 template <VehicleModel V>
 ReceiveSide<V>::ReceiveSide(const V& vehicle, const VehicleParams& params, ReceiveEntities entities,
                             Handoffs& handoffs, platform::Wakeup& lockstep_inputs,
@@ -145,7 +136,7 @@ void ReceiveSide<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& b
       if (verdict.ok()) verdict = follow(msg.incarnation, now);
       if (verdict.ok()) verdict = link::check_vehicle_state(msg, vehicle_, last_state_stamp_);
       if (verdict.ok() &&
-          !stamp_lead_allowed(msg.stamp_ns, last_state_stamp_, now - last_state_local_ns_)) {
+          !link::stamp_lead_allowed(msg.stamp_ns, last_state_stamp_, now - last_state_local_ns_)) {
         verdict = link::Verdict{link::Rejection::kStampInFuture, "stamp_ns"};
       }
       if (!verdict.ok()) {

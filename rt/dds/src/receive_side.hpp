@@ -51,13 +51,6 @@ struct ReceiveCounters {
   std::atomic<std::uint64_t> vehicle_restarts{0};
 };
 
-// How far ahead of the last accepted state a vehicle state's stamp may be: kMaxStampLeadNs plus
-// the wall-clock time since, at the largest time scale (1000). A stamp further ahead is
-// rejected (kStampInFuture): accepted, it would make every later state "not increasing".
-inline constexpr std::int64_t kMaxStampLeadNs = 10'000'000'000;
-bool stamp_lead_allowed(std::uint64_t stamp_ns, std::uint64_t last_stamp_ns,
-                        std::int64_t wall_since_ns) noexcept;
-
 // The entities the receive thread reads from and writes map requests with.
 struct ReceiveEntities {
   platform::dds::Reader<grip_msg_VehicleState>& states;

@@ -59,6 +59,14 @@ TEST(IncarnationTracker, AnotherPeerTakesOverOnceTheFollowedOneIsSilentForTheLea
   EXPECT_EQ(tracker.observe(7, kLeaseNs + 1), Peer::kOther);
 }
 
+TEST(StampLead, AStampFarAheadOfTheLastIsRefusedUnlessTheWallClockAllowsIt) {
+  EXPECT_TRUE(stamp_lead_allowed(5'000'000'000, 1'000'000'000, 0));
+  EXPECT_FALSE(stamp_lead_allowed(20'000'000'000, 1'000'000'000, 0));
+  EXPECT_TRUE(stamp_lead_allowed(20'000'000'000, 1'000'000'000, 1'000'000'000));
+  EXPECT_TRUE(stamp_lead_allowed(20'000'000'000, 0, 0)) << "the first state sets the mark";
+  EXPECT_FALSE(stamp_lead_allowed(UINT64_MAX, 1'000'000'000, 60'000'000'000));
+}
+
 TEST(Freshness, ADurableSampleIsNeverTooOldButStillNotFromTheFuture) {
   const std::int64_t now = 100'000'000'000;
   EXPECT_EQ(check_freshness(now - 60'000'000'000, now, FreshnessLimits{}).reason,

@@ -109,11 +109,6 @@ TEST(DurableGoal, APlannerStartedLongAfterTheGoalWasSetTakesIt) {
 }
 
 TEST(StampLead, AVehicleStateStampedFarInTheFutureIsRejectedWithoutLockingTheVehicleOut) {
-  EXPECT_TRUE(stamp_lead_allowed(5'000'000'000, 1'000'000'000, 0));
-  EXPECT_FALSE(stamp_lead_allowed(20'000'000'000, 1'000'000'000, 0));
-  EXPECT_TRUE(stamp_lead_allowed(20'000'000'000, 1'000'000'000, 1'000'000'000));
-  EXPECT_TRUE(stamp_lead_allowed(20'000'000'000, 0, 0)) << "the first state sets the mark";
-
   constexpr platform::dds::DomainId kDomain = 185;
   auto vehicle = VehicleSide::create(kDomain, VehicleKind::kDdVelocity);
   ASSERT_NE(vehicle, nullptr);
@@ -131,6 +126,8 @@ TEST(StampLead, AVehicleStateStampedFarInTheFutureIsRejectedWithoutLockingTheVeh
   future.stamp_ns += 3600ULL * 1'000'000'000ULL;
   future.sequence_number += 1000;
   ASSERT_TRUE(vehicle->link().publish_state(future).ok());
+  // Alone for a moment: the state topic keeps only the newest sample.
+  std::this_thread::sleep_for(300ms);
   ASSERT_TRUE(eventually([&] { return latest() && status->rejected_vehicle_state >= 1; }, 5000ms,
                          vehicle.get()))
       << "the future state was not rejected";

@@ -8,6 +8,14 @@
 
 namespace grip::link {
 
+// How far ahead of the last accepted state a vehicle state's stamp may be: kMaxStampLeadNs plus
+// the wall-clock time since, at the largest time scale (1000). A stamp further ahead is
+// rejected (kStampInFuture): accepted, it would make every later state "not increasing" and
+// lock the vehicle out. last_stamp_ns 0: no state yet, any stamp sets the mark.
+inline constexpr std::int64_t kMaxStampLeadNs = 10'000'000'000;
+bool stamp_lead_allowed(std::uint64_t stamp_ns, std::uint64_t last_stamp_ns,
+                        std::int64_t wall_since_ns) noexcept;
+
 // A random, non-zero incarnation, different for every call in practice (64 random bits).
 std::uint64_t new_incarnation() noexcept;
 
