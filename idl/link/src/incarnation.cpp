@@ -9,9 +9,9 @@ std::uint64_t new_incarnation() noexcept {
   // random_device alone may be deterministic on some platforms; the clock makes two starts
   // differ there too.
   std::random_device device;
-  std::uint64_t value = (static_cast<std::uint64_t>(device()) << 32) ^ device() ^
-                        static_cast<std::uint64_t>(
-                            std::chrono::steady_clock::now().time_since_epoch().count());
+  std::uint64_t value =
+      (static_cast<std::uint64_t>(device()) << 32) ^ device() ^
+      static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
   std::seed_seq seed{static_cast<std::uint32_t>(value), static_cast<std::uint32_t>(value >> 32)};
   std::mt19937_64 mix(seed);
   do {

@@ -88,8 +88,8 @@ bool VehicleLink::from_followed_planner(const grip_msg_Plan& plan) {
   }
   const std::uint64_t before = planner_.followed();
   const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                   std::chrono::steady_clock::now().time_since_epoch())
-                                   .count();
+                                  std::chrono::steady_clock::now().time_since_epoch())
+                                  .count();
   const Peer peer = planner_.observe(plan.incarnation, now_ns);
   if (peer == Peer::kOther) {
     if (plans_other_planner_++ == 0) {
@@ -99,8 +99,8 @@ bool VehicleLink::from_followed_planner(const grip_msg_Plan& plan) {
     return false;
   }
   if (peer == Peer::kNew && before != 0) {
-    warn("planner " + std::to_string(before) + " silent for a liveliness lease: following planner " +
-         std::to_string(plan.incarnation));
+    warn("planner " + std::to_string(before) +
+         " silent for a liveliness lease: following planner " + std::to_string(plan.incarnation));
   }
   if (plan.vehicle_incarnation != incarnation_) {
     if (plans_other_vehicle_++ == 0) {

@@ -26,11 +26,11 @@ inline constexpr int kTileSide = 128;
 inline constexpr std::size_t kTileRing = 32;
 
 struct MapTile {
-  CellBox box;                     // inside the map, at most kTileSide on a side
-  std::uint64_t map_sequence = 0;  // the receiver's last applied update when cut
-  bool in_sync = false;            // the receiver's map was in sync when cut
+  CellBox box;                            // inside the map, at most kTileSide on a side
+  std::uint64_t map_sequence = 0;         // the receiver's last applied update when cut
+  bool in_sync = false;                   // the receiver's map was in sync when cut
   std::uint64_t vehicle_incarnation = 0;  // the mapping side's incarnation: another is not ours
-  bool last_of_batch = false;      // no other tile was pending when this one was cut
+  bool last_of_batch = false;             // no other tile was pending when this one was cut
   std::array<Cell, static_cast<std::size_t>(kTileSide) * kTileSide> cells{};
 };
 

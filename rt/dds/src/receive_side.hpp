@@ -122,7 +122,7 @@ class ReceiveSide {
   link::IncarnationTracker vehicle_incarnation_;
   std::uint64_t last_state_stamp_ = 0;
   std::uint64_t last_state_sequence_ = 0;
-  std::int64_t last_state_local_ns_ = 0;  // when the last state was accepted
+  std::int64_t last_state_local_ns_ = 0;       // when the last state was accepted
   bool lockstep_seen_ = false;                 // the vehicle's states ask for lockstep
   std::optional<grip_msg_Goal> pending_goal_;  // arrived before the map: checked once it exists
   bool was_alive_ = false;

@@ -292,8 +292,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   report.wall_time_s = static_cast<double>(platform::now_ns() - wall0) * 1e-9;
   report.plans_from_other_planner = (*link)->plans_from_other_planner();
   report.planner_failovers = (*link)->planner_failovers();
-  if (report.result != "complete" && report.result != "error" &&
-      report.distance_m < kNeverMovedM) {
+  if (report.result != "complete" && report.result != "error" && report.distance_m < kNeverMovedM) {
     report.reason = report.result + (report.reason.empty() ? "" : ": " + report.reason);
     report.result = "never-moved";
   }

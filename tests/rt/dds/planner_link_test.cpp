@@ -138,8 +138,8 @@ TEST(StampLead, AVehicleStateStampedFarInTheFutureIsRejectedWithoutLockingTheVeh
     std::this_thread::sleep_for(10ms);
   }
   const std::uint64_t cycle = status->cycle;
-  ASSERT_TRUE(eventually([&] { return latest() && status->cycle > cycle + 5; }, 5000ms,
-                         vehicle.get()));
+  ASSERT_TRUE(
+      eventually([&] { return latest() && status->cycle > cycle + 5; }, 5000ms, vehicle.get()));
   EXPECT_EQ(status->rejected_vehicle_state, rejected) << "the vehicle was locked out";
 }
 

@@ -33,13 +33,23 @@ struct Room {
   sim::StartPose start;
 };
 
-Room small_room(const VehicleParams& params) {
-  auto loaded = sim::parse_movingai_map(
-      "type octile\nheight 10\nwidth 10\nmap\n"
-      "@@@@@@@@@@\n@........@\n@........@\n@...@@...@\n@...@@...@\n"
-      "@........@\n@.@@@@@..@\n@........@\n@........@\n@@@@@@@@@@\n",
-      "small room");
-  EXPECT_TRUE(loaded.ok());
+constexpr const char* kSmallRoom =
+    "type octile\nheight 10\nwidth 10\nmap\n"
+    "@@@@@@@@@@\n@........@\n@........@\n@...@@...@\n@...@@...@\n"
+    "@........@\n@.@@@@@..@\n@........@\n@........@\n@@@@@@@@@@\n";
+// Two of those side by side with a door: long enough to explore that a standby planner is up
+// before it ends.
+constexpr const char* kTwoRooms =
+    "type octile\nheight 10\nwidth 19\nmap\n"
+    "@@@@@@@@@@@@@@@@@@@\n@........@........@\n"
+    "@........@........@\n@...@@...@...@@...@\n"
+    "@...@@.......@@...@\n@.................@\n"
+    "@.@@@@@..@.@@@@@..@\n@........@........@\n"
+    "@........@........@\n@@@@@@@@@@@@@@@@@@@\n";
+
+Room small_room(const VehicleParams& params, const char* map = kSmallRoom) {
+  auto loaded = sim::parse_movingai_map(map, "room");
+  EXPECT_TRUE(loaded.ok()) << loaded.error().message;
   const auto vehicle = DdVelocity::create(std::get<DdVelocityParams>(params)).value();
   const double margin = step_collision_margin_m(vehicle, integration_step_for_cycle(0.05));
   const sim::StartPose start = sim::choose_start(*loaded, vehicle.footprint(), margin).value();
@@ -144,17 +154,21 @@ TEST(PlannerRestart, APlannerRestartedUnderARunningSimulatorResumesAndTheExplora
 TEST(PlannerRestart, AStandbyPlannerIsNotFollowedUntilTheActiveOneDiesThenTakesOver) {
   constexpr platform::dds::DomainId kDomain = 182;
   const VehicleParams vehicle = default_vehicle_params(VehicleKind::kDdVelocity);
-  const Room room = small_room(vehicle);
+  const Room room = small_room(vehicle, kTwoRooms);
   auto active = std::make_unique<RunningPlanner>(exploring_planner(kDomain, 3));
   ASSERT_NE(active->planner, nullptr) << active->result->error().message;
   RunningSim sim(lockstep_sim(kDomain, vehicle, room), room.truth);
-  ASSERT_TRUE(eventually([&] { return sim.planner_cycle.load() > 20; }, 60000ms))
+  ASSERT_TRUE(eventually([&] { return sim.planner_cycle.load() > 5; }, 60000ms))
       << "the active planner never got going";
   // The standby plans all along: its plans are rejected, counted, never executed.
-  RunningPlanner standby(exploring_planner(kDomain, 4));
+  std::atomic<bool> standby_ready{false};
+  PlannerParticipantConfig standby_config = exploring_planner(kDomain, 4);
+  standby_config.on_ready = [&](const std::string&) { standby_ready.store(true); };
+  RunningPlanner standby(standby_config);
   ASSERT_NE(standby.planner, nullptr) << standby.result->error().message;
+  ASSERT_TRUE(eventually([&] { return standby_ready.load(); }, 60000ms));
   const std::uint64_t before = sim.planner_cycle.load();
-  ASSERT_TRUE(eventually([&] { return sim.planner_cycle.load() > before + 40; }, 60000ms));
+  ASSERT_TRUE(eventually([&] { return sim.planner_cycle.load() > before + 10; }, 60000ms));
   active.reset();  // killed
   const Result<sim::SimRunReport>& run = sim.join();
   expect_complete(run, "simulator after failover");

@@ -95,7 +95,7 @@ struct SimProgress {
 };
 
 struct SimRunReport {
-  std::string result;  // complete, done-early, never-moved, timeout, stuck, error
+  std::string result;     // complete, done-early, never-moved, timeout, stuck, error
   std::string reason;     // for error (and a word on the others)
   double coverage = 0.0;  // sensed fraction of the free space the vehicle can reach from the start
   std::uint64_t collisions = 0;

@@ -130,8 +130,8 @@ struct PlannerParticipantReport {
   // Times a new vehicle incarnation replaced the one planned for (a restarted vehicle side);
   // the report's other figures are of the planning for the last one.
   std::uint64_t vehicle_restarts = 0;
-  bool explored = false;             // exploration ended: no reachable frontier remained
-  std::uint64_t resyncs = 0;         // fresh trees from where a vehicle off the tree will be
+  bool explored = false;      // exploration ended: no reachable frontier remained
+  std::uint64_t resyncs = 0;  // fresh trees from where a vehicle off the tree will be
   bool allocations_counted = false;
   std::uint64_t heap_allocations_in_loop = 0;  // planning thread, after warm-up
   platform::ThreadUsage usage_in_loop{};
