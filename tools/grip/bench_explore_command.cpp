@@ -26,6 +26,7 @@
 #include "commands.hpp"
 #include "dds_config.hpp"
 #include "grip/params/params.hpp"
+#include "grip/sim/sim_participant.hpp"
 #include "report_file.hpp"
 #include "stats.hpp"
 
@@ -141,7 +142,7 @@ struct Row {
   bool target_met(bool no_safety) const {
     if (no_safety) return collided > 0;  // the ablation shows why the safety step exists
     // The target; whether each run also ended by itself is the `complete` column.
-    return with_report == runs && collisions == 0 && min_coverage >= 0.97;
+    return with_report == runs && collisions == 0 && min_coverage >= sim::kCompleteCoverage;
   }
 };
 

@@ -42,11 +42,17 @@ nlohmann::json state_array(const double (&state)[grip_msg_kMaxStateDim]) {
 }  // namespace
 
 nlohmann::json to_json(const grip_msg_VehicleState& m) {
-  return {{"stamp_ns", m.stamp_ns},        {"sequence_number", m.sequence_number},
-          {"kind", kind_name(m.kind)},     {"state", state_array(m.state)},
-          {"state_dim", m.state_dim},      {"time_scale", m.time_scale},
-          {"lockstep", m.lockstep},        {"plan_cycle", m.plan_cycle},
-          {"map_sequence", m.map_sequence}};
+  return {{"stamp_ns", m.stamp_ns},
+          {"sequence_number", m.sequence_number},
+          {"kind", kind_name(m.kind)},
+          {"state", state_array(m.state)},
+          {"state_dim", m.state_dim},
+          {"time_scale", m.time_scale},
+          {"lockstep", m.lockstep},
+          {"plan_cycle", m.plan_cycle},
+          {"map_sequence", m.map_sequence},
+          {"incarnation", m.incarnation},
+          {"plan_incarnation", m.plan_incarnation}};
 }
 
 nlohmann::json to_json(const grip_msg_Plan& m) {
@@ -63,7 +69,9 @@ nlohmann::json to_json(const grip_msg_Plan& m) {
           {"committed_monotonic_ns", m.committed_monotonic_ns},
           {"kind", kind_name(m.kind)},
           {"steps", steps},
-          {"contingency", contingency_name(m.contingency)}};
+          {"contingency", contingency_name(m.contingency)},
+          {"incarnation", m.incarnation},
+          {"vehicle_incarnation", m.vehicle_incarnation}};
 }
 
 nlohmann::json to_json(const grip_msg_MapUpdate& m) {
@@ -72,21 +80,14 @@ nlohmann::json to_json(const grip_msg_MapUpdate& m) {
     const std::uint8_t c = m.cells._buffer[i];
     if (c <= 9) cells[i] = static_cast<char>('0' + c);  // out-of-contract values stay '?'
   }
-  return {{"sequence_number", m.sequence_number},
-          {"stamp_ns", m.stamp_ns},
-          {"map_width_cells", m.map_width_cells},
-          {"map_height_cells", m.map_height_cells},
-          {"resolution_m", m.resolution_m},
-          {"map_origin_x_m", m.map_origin_x_m},
-          {"map_origin_y_m", m.map_origin_y_m},
-          {"origin_x_cell", m.origin_x_cell},
-          {"origin_y_cell", m.origin_y_cell},
-          {"width_cells", m.width_cells},
-          {"height_cells", m.height_cells},
-          {"snapshot_id", m.snapshot_id},
-          {"snapshot_part", m.snapshot_part},
-          {"snapshot_parts", m.snapshot_parts},
-          {"cells", cells}};
+  return {{"sequence_number", m.sequence_number}, {"stamp_ns", m.stamp_ns},
+          {"map_width_cells", m.map_width_cells}, {"map_height_cells", m.map_height_cells},
+          {"resolution_m", m.resolution_m},       {"map_origin_x_m", m.map_origin_x_m},
+          {"map_origin_y_m", m.map_origin_y_m},   {"origin_x_cell", m.origin_x_cell},
+          {"origin_y_cell", m.origin_y_cell},     {"width_cells", m.width_cells},
+          {"height_cells", m.height_cells},       {"snapshot_id", m.snapshot_id},
+          {"snapshot_part", m.snapshot_part},     {"snapshot_parts", m.snapshot_parts},
+          {"incarnation", m.incarnation},         {"cells", cells}};
 }
 
 nlohmann::json to_json(const grip_msg_MapRequest& m) {
@@ -126,7 +127,10 @@ nlohmann::json to_json(const grip_msg_PlannerStatus& m) {
           {"frontier_groups", m.frontier_groups},
           {"frontier_groups_given_up", m.frontier_groups_given_up},
           {"target_x_m", m.target_x_m},
-          {"target_y_m", m.target_y_m}};
+          {"target_y_m", m.target_y_m},
+          {"incarnation", m.incarnation},
+          {"vehicle_incarnation", m.vehicle_incarnation},
+          {"vehicle_restarts", m.vehicle_restarts}};
 }
 
 nlohmann::json to_json(const grip_msg_VehicleDescription& m) {

@@ -13,7 +13,7 @@ namespace grip::link {
 
 namespace {
 
-constexpr std::array<NamedValue<Rejection>, 17> kRejectionNames{{
+constexpr std::array<NamedValue<Rejection>, 19> kRejectionNames{{
     {Rejection::kNone, "none"},
     {Rejection::kUnknownVehicleKind, "unknown vehicle kind"},
     {Rejection::kWrongVehicleKind, "wrong vehicle kind"},
@@ -31,6 +31,8 @@ constexpr std::array<NamedValue<Rejection>, 17> kRejectionNames{{
     {Rejection::kBadSnapshot, "bad snapshot numbering"},
     {Rejection::kGoalOutsideMap, "goal outside the map"},
     {Rejection::kNonPositiveDuration, "duration not positive"},
+    {Rejection::kNoIncarnation, "no incarnation"},
+    {Rejection::kOtherIncarnation, "another incarnation"},
 }};
 
 constexpr Verdict reject(Rejection reason, const char* field) noexcept { return {reason, field}; }

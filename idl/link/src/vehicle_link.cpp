@@ -1,6 +1,7 @@
 #include "grip/link/vehicle_link.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <utility>
 
 namespace grip::link {
@@ -68,16 +69,62 @@ VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Ent
       request_buffer_(
           std::make_unique<pdds::SampleBuffer<grip_msg_MapRequest, 8>>(&grip_msg_MapRequest_desc)),
       status_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_PlannerStatus, 4>>(
-          &grip_msg_PlannerStatus_desc)) {}
+          &grip_msg_PlannerStatus_desc)),
+      incarnation_(new_incarnation()),
+      planner_(config.timing.liveliness_lease.count()),
+      warn_(config.on_warning) {}
 
 Status VehicleLink::publish_state(const grip_msg_VehicleState& state) {
-  return dds_.states.write(state);
+  grip_msg_VehicleState stamped = state;  // plain data
+  stamped.incarnation = incarnation_;
+  stamped.plan_incarnation = planner_.followed();
+  return dds_.states.write(stamped);
+}
+
+bool VehicleLink::from_followed_planner(const grip_msg_Plan& plan) {
+  if (!check_plan(plan, kind_).ok() || plan.incarnation == 0) {
+    ++plans_rejected_;
+    return false;
+  }
+  const std::uint64_t before = planner_.followed();
+  const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                  std::chrono::steady_clock::now().time_since_epoch())
+                                  .count();
+  const Peer peer = planner_.observe(plan.incarnation, now_ns);
+  if (peer == Peer::kOther) {
+    if (plans_other_planner_++ == 0) {
+      warn("plans from a second planner (incarnation " + std::to_string(plan.incarnation) +
+           ") rejected: following planner " + std::to_string(before));
+    }
+    return false;
+  }
+  if (peer == Peer::kNew && before != 0) {
+    warn("planner " + std::to_string(before) +
+         " silent for a liveliness lease: following planner " + std::to_string(plan.incarnation));
+  }
+  if (plan.vehicle_incarnation != incarnation_) {
+    if (plans_other_vehicle_++ == 0) {
+      warn("plans made for an earlier incarnation of this vehicle rejected");
+    }
+    return false;
+  }
+  return true;
+}
+
+void VehicleLink::warn(const std::string& line) const {
+  if (warn_) {
+    warn_(line);
+  } else {
+    std::fprintf(stderr, "grip vehicle link: %s\n", line.c_str());
+  }
 }
 
 Status VehicleLink::publish_goal(const grip_msg_Goal& goal) { return dds_.goals.write(goal); }
 
 void VehicleLink::send(const grip_msg_MapUpdate& update) {
-  if (!dds_.maps.write(update).ok()) ++map_writes_failed_;  // a gap to the planner, which heals it
+  grip_msg_MapUpdate stamped = update;  // the cells stay borrowed
+  stamped.incarnation = incarnation_;
+  if (!dds_.maps.write(stamped).ok()) ++map_writes_failed_;  // a gap to the planner, which heals it
 }
 
 void VehicleLink::publish_map_updates(const CellBox& box, std::uint64_t stamp_ns,
@@ -110,11 +157,7 @@ const grip_msg_Plan* VehicleLink::take_plan() {
     const Result<std::size_t> taken = dds_.plans.take(*plan_buffer_);
     if (!taken.ok() || *taken == 0) break;
     for (std::size_t i = 0; i < *taken; ++i) {
-      if (check_plan((*plan_buffer_)[i], kind_).ok()) {
-        newest = &(*plan_buffer_)[i];
-      } else {
-        ++plans_rejected_;
-      }
+      if (from_followed_planner((*plan_buffer_)[i])) newest = &(*plan_buffer_)[i];
     }
     if (newest != nullptr) break;  // the next take would reuse the buffer under it
   }
@@ -127,11 +170,9 @@ std::size_t VehicleLink::take_plans(FunctionRef<void(const grip_msg_Plan&)> visi
     const Result<std::size_t> taken = dds_.plans.take(*plan_buffer_);
     if (!taken.ok() || *taken == 0) break;
     for (std::size_t i = 0; i < *taken; ++i) {
-      if (check_plan((*plan_buffer_)[i], kind_).ok()) {
+      if (from_followed_planner((*plan_buffer_)[i])) {
         visit((*plan_buffer_)[i]);
         ++visited;
-      } else {
-        ++plans_rejected_;
       }
     }
   }
@@ -147,7 +188,13 @@ std::optional<grip_msg_PlannerStatus> VehicleLink::take_status() {
   for (;;) {
     const Result<std::size_t> taken = dds_.status.take(*status_buffer_);
     if (!taken.ok() || *taken == 0) break;
-    newest = (*status_buffer_)[*taken - 1];  // plain data: a copy owns nothing
+    // Only the planner followed, about this incarnation: a planner still busy with an earlier
+    // run of this vehicle (or a standby) says nothing about this one.
+    for (std::size_t i = 0; i < *taken; ++i) {
+      const grip_msg_PlannerStatus& s = (*status_buffer_)[i];
+      const bool followed = planner_.followed() == 0 || s.incarnation == planner_.followed();
+      if (followed && s.vehicle_incarnation == incarnation_) newest = s;  // plain data
+    }
   }
   return newest;
 }

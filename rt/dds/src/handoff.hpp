@@ -26,10 +26,11 @@ inline constexpr int kTileSide = 128;
 inline constexpr std::size_t kTileRing = 32;
 
 struct MapTile {
-  CellBox box;                     // inside the map, at most kTileSide on a side
-  std::uint64_t map_sequence = 0;  // the receiver's last applied update when cut
-  bool in_sync = false;            // the receiver's map was in sync when cut
-  bool last_of_batch = false;      // no other tile was pending when this one was cut
+  CellBox box;                            // inside the map, at most kTileSide on a side
+  std::uint64_t map_sequence = 0;         // the receiver's last applied update when cut
+  bool in_sync = false;                   // the receiver's map was in sync when cut
+  std::uint64_t vehicle_incarnation = 0;  // the mapping side's incarnation: another is not ours
+  bool last_of_batch = false;             // no other tile was pending when this one was cut
   std::array<Cell, static_cast<std::size_t>(kTileSide) * kTileSide> cells{};
 };
 
@@ -40,6 +41,7 @@ struct PlanSlot {
   std::uint32_t state_dim = 0;
   std::uint64_t state_sequence = 0;
   std::uint64_t committed_monotonic_ns = 0;
+  std::uint64_t vehicle_incarnation = 0;  // the vehicle planned for
   std::uint32_t steps = 0;
   std::array<grip_msg_PlanStep, grip_msg_kMaxPlanSteps> step{};
 };
@@ -59,6 +61,7 @@ struct CycleStatus {
   std::uint64_t map_sequence = 0;
   std::uint64_t map_checksum = 0;
   bool map_in_sync = false;
+  std::uint64_t vehicle_incarnation = 0;  // the vehicle planned for
 };
 
 // The publish thread's record of the plans' way out (PlannerParticipantReport::plan_handoff).

@@ -10,6 +10,7 @@
 
 #include "description_watch.hpp"
 #include "goal.h"
+#include "grip/link/incarnation.hpp"
 #include "grip/link/topics.hpp"
 #include "grip/platform/clock.hpp"
 #include "grip/platform/dds/reader.hpp"
@@ -135,24 +136,42 @@ class PlannerParticipantFor final : public PlannerParticipant {
       : config_(config),
         dds_(std::move(entities)),
         wakeups_(std::move(wakeups)),
+        vehicle_(vehicle),
         receive_(
             vehicle, config.vehicle,
             {dds_.states, dds_.maps, dds_.goals, dds_.descriptions, dds_.requests, dds_.waitset},
-            handoffs_, wakeups_.lockstep_inputs, config.max_map_cells, config.on_warning),
-        publish_(V::kKind, {dds_.plans, dds_.status}, handoffs_, wakeups_.publish,
-                 receive_.counters(), receive_.clock()),
-        planning_(config, vehicle, handoffs_, wakeups_.publish, wakeups_.target_wanted,
-                  receive_.clock()),
+            handoffs_, wakeups_.lockstep_inputs, config.max_map_cells,
+            config.liveliness_lease.count(), config.on_warning),
+        publish_(V::kKind, link::new_incarnation(), {dds_.plans, dds_.status}, handoffs_,
+                 wakeups_.publish, receive_.counters(), receive_.clock()),
+        planning_(new_planning_side()),
         alive_(config.on_alive ? config.alive_interval.count() : 0) {}
   ~PlannerParticipantFor() override;
 
   // Service threads start now: before any SCHED_DEADLINE thread, which could not create them.
   void start_service_threads();
   Result<PlannerParticipantReport> run() override;
-  PlannerTreePicture last_tree() const override { return planning_.tree_picture(); }
+  PlannerTreePicture last_tree() const override { return planning_->tree_picture(); }
 
  private:
   Status start_up();
+  std::unique_ptr<PlanningSide<V>> new_planning_side() {
+    return std::make_unique<PlanningSide<V>>(config_, vehicle_, handoffs_, wakeups_.publish,
+                                             wakeups_.target_wanted, receive_.clock());
+  }
+  // The vehicle planned for was replaced by a new incarnation (a restarted vehicle side).
+  bool vehicle_replaced() const noexcept {
+    const std::uint64_t followed =
+        receive_.counters().vehicle_incarnation.load(std::memory_order_acquire);
+    return planning_->vehicle_incarnation() != 0 && followed != planning_->vehicle_incarnation();
+  }
+  // Planning anew (a new vehicle, or a map the planner refused): a fresh planning side, the
+  // target thread paused meanwhile, since it serves the planning side's requests.
+  void reset_planning();
+  void start_target_thread();
+  // Start-up: the planner cannot plan on the vehicle's map (`why`): refused and counted, and
+  // start-up waits for another.
+  void refuse_map(const link::MapGeometry& geometry, const Error& why);
   // Ok while the vehicle has not described itself differently from config_.vehicle.
   Status vehicle_accepted() const {
     const DescriptionWatch& description = receive_.description();
@@ -174,9 +193,11 @@ class PlannerParticipantFor final : public PlannerParticipant {
   Wakeups wakeups_;
   Handoffs handoffs_;
   std::atomic<bool> threads_stop_{false};
+  V vehicle_;
   ReceiveSide<V> receive_;
   PublishSide publish_;
-  PlanningSide<V> planning_;
+  std::unique_ptr<PlanningSide<V>> planning_;
+  std::atomic<bool> target_stop_{false};
   VehicleSample first_state_;  // the state start-up planned from
   LivenessBeat alive_;
   std::thread receive_thread_;
@@ -189,7 +210,37 @@ void PlannerParticipantFor<V>::start_service_threads() {
   receive_thread_ =
       start_service_thread(kReceiveThread, [this] { receive_.run(threads_stop_, stop_); });
   publish_thread_ = start_service_thread(kPublishThread, [this] { publish_.run(threads_stop_); });
+  start_target_thread();
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::start_target_thread() {
+  target_stop_.store(false, std::memory_order_release);
   target_thread_ = start_service_thread(kTargetThread, [this] { target_main(); });
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::reset_planning() {
+  target_stop_.store(true, std::memory_order_release);
+  wakeups_.target_wanted.signal();
+  if (target_thread_.joinable()) target_thread_.join();
+  planning_ = new_planning_side();
+  start_target_thread();
+}
+
+template <VehicleModel V>
+void PlannerParticipantFor<V>::refuse_map(const link::MapGeometry& geometry, const Error& why) {
+  receive_.refuse_geometry(geometry);
+  reset_planning();
+  const std::string line = "rejected map update: the planner cannot plan on its geometry (" +
+                           std::to_string(geometry.width_cells) + " x " +
+                           std::to_string(geometry.height_cells) + " cells of " +
+                           std::to_string(geometry.resolution_m) + " m): " + why.message;
+  if (config_.on_warning) {
+    config_.on_warning(line);
+  } else {
+    std::fprintf(stderr, "grip planner: %s\n", line.c_str());
+  }
 }
 
 template <VehicleModel V>
@@ -205,9 +256,10 @@ PlannerParticipantFor<V>::~PlannerParticipantFor() {
 
 template <VehicleModel V>
 void PlannerParticipantFor<V>::target_main() {
-  while (!threads_stop_.load(std::memory_order_acquire)) {
+  while (!threads_stop_.load(std::memory_order_acquire) &&
+         !target_stop_.load(std::memory_order_acquire)) {
     static_cast<void>(wakeups_.target_wanted.wait(std::chrono::milliseconds(100)));
-    static_cast<void>(planning_.serve_target_request());
+    static_cast<void>(planning_->serve_target_request());
   }
 }
 
@@ -221,30 +273,56 @@ Status PlannerParticipantFor<V>::start_up() {
   const std::int64_t timeout = config_.startup_timeout.count();
   std::optional<VehicleSample> state;
   std::optional<Goal> goal;
-  std::optional<std::int64_t> synced_at;  // when the map was first in sync
+  std::int64_t synced_at = -1;  // when the map was first in sync; -1: not yet
   std::string refusal;
   while (!stop_.load(std::memory_order_acquire)) {
     if (Status s = vehicle_accepted(); !s) return s;
     const bool described = receive_.description().verdict() == Described::kMatches;
-    if (!planning_.has_map() && receive_.geometry_ready()) {
-      if (Status s = planning_.create_map(receive_.geometry()); !s) return s;
-    }
-    if (planning_.has_map()) {
-      MapChanges ignored;  // no tree yet
-      planning_.apply_tiles(ignored);
-    }
-    if (handoffs_.states->update()) state = handoffs_.states->read_buffer();
-    if (handoffs_.goals->update()) goal = handoffs_.goals->read_buffer();
-    const bool in_sync = planning_.has_map() && planning_.map_in_sync();
-    if (in_sync && !synced_at) synced_at = platform::now_ns();
-    const bool explore = !goal && config_.explore_without_goal && synced_at &&
-                         platform::now_ns() - *synced_at >= config_.goal_grace.count();
-    if (described && in_sync && state && (goal || explore)) {
-      if (!planning_.prepared()) {
-        if (Status s = planning_.prepare(*state, explore); !s) return s;
-        publish_.set_time_scale(planning_.time_scale());
+    // The vehicle planned for: the one the receive side follows; a new one starts over.
+    const std::uint64_t vehicle =
+        receive_.counters().vehicle_incarnation.load(std::memory_order_acquire);
+    if (vehicle != planning_->vehicle_incarnation()) {
+      if (planning_->vehicle_incarnation() != 0) {
+        reset_planning();
+        state.reset();
+        synced_at = -1;
       }
-      const Status s = planning_.start(*state, goal);
+      planning_->set_vehicle(vehicle);
+    }
+    // The map once the vehicle it is of is known: tiles of another are dropped.
+    if (!planning_->has_map() && planning_->vehicle_incarnation() != 0 &&
+        receive_.geometry_ready()) {
+      const link::MapGeometry geometry = receive_.geometry();
+      if (Status s = planning_->create_map(geometry); !s) {
+        refuse_map(geometry, s.error());
+        planning_->set_vehicle(vehicle);
+        continue;
+      }
+    }
+    if (planning_->has_map()) {
+      MapChanges ignored;  // no tree yet
+      planning_->apply_tiles(ignored);
+    }
+    if (handoffs_.states->update() &&
+        handoffs_.states->read_buffer().incarnation == planning_->vehicle_incarnation()) {
+      state = handoffs_.states->read_buffer();
+    }
+    if (handoffs_.goals->update()) goal = handoffs_.goals->read_buffer();
+    const bool in_sync = planning_->has_map() && planning_->map_in_sync();
+    if (in_sync && synced_at < 0) synced_at = platform::now_ns();
+    const bool explore = !goal && config_.explore_without_goal && synced_at >= 0 &&
+                         platform::now_ns() - synced_at >= config_.goal_grace.count();
+    if (described && in_sync && state && (goal || explore)) {
+      if (!planning_->prepared()) {
+        if (Status s = planning_->prepare(*state, explore); !s) {
+          refuse_map(receive_.geometry(), s.error());
+          planning_->set_vehicle(vehicle);
+          synced_at = -1;
+          continue;
+        }
+        publish_.set_time_scale(planning_->time_scale());
+      }
+      const Status s = planning_->start(*state, goal);
       if (s.ok()) {
         first_state_ = *state;
         return Ok{};
@@ -268,24 +346,30 @@ Status PlannerParticipantFor<V>::start_up() {
 
 template <VehicleModel V>
 Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
-  if (Status s = start_up(); !s) return s.error();
-  if (config_.on_ready) {
-    config_.on_ready(std::string("planning (") + (planning_.lockstep() ? "lockstep" : "real time") +
-                     "): vehicle described as configured, map in sync, vehicle state received");
+  // Start-up, then planning, again for each new vehicle incarnation (a restarted vehicle side).
+  for (;;) {
+    if (Status s = start_up(); !s) return s.error();
+    if (config_.on_ready) {
+      config_.on_ready(std::string("planning (") +
+                       (planning_->lockstep() ? "lockstep" : "real time") +
+                       "): vehicle described as configured, map in sync, vehicle state received");
+    }
+    auto report = planning_->lockstep() ? run_lockstep() : run_real_time();
+    if (!report || stop_.load(std::memory_order_acquire) || !vehicle_replaced()) return report;
+    reset_planning();
   }
-  return planning_.lockstep() ? run_lockstep() : run_real_time();
 }
 
 // Real time: one cycle per period on the planning thread (rt::PeriodicLoop), whose records this
 // thread collects.
 template <VehicleModel V>
 Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_real_time() {
-  planning_.choose_first_target();
+  planning_->choose_first_target();
   PeriodicLoopConfig loop_config;
-  const std::int64_t period_wall = planning_.period_wall_ns();
+  const std::int64_t period_wall = planning_->period_wall_ns();
   loop_config.name = kPlanningThread.name;
   loop_config.period = std::chrono::nanoseconds(period_wall);
-  loop_config.budget = std::chrono::nanoseconds(ns_of(config_.budget_s / planning_.time_scale()));
+  loop_config.budget = std::chrono::nanoseconds(ns_of(config_.budget_s / planning_->time_scale()));
   loop_config.policy = config_.policy;
   loop_config.fifo_priority = config_.fifo_priority;
   loop_config.cpu = config_.cpu;
@@ -296,18 +380,20 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_real_time() {
                                  config_.duration_s * 1e9 / static_cast<double>(period_wall)))
                            : std::numeric_limits<std::uint64_t>::max();
   auto loop = PeriodicLoop::start(loop_config, [this](std::int64_t release, std::int64_t deadline) {
-    return planning_.cycle_body(release, deadline);
+    return planning_->cycle_body(release, deadline);
   });
   if (!loop) return loop.error();
 
   PlannerParticipantReport report;
-  report.time_scale = planning_.time_scale();
+  report.time_scale = planning_->time_scale();
   CycleRecord record;
   std::int64_t next_progress = platform::now_ns();
   Status accepted = Ok{};
   while (true) {
     accepted = vehicle_accepted();  // a new vehicle, described otherwise: planning stops
-    if (stop_.load(std::memory_order_acquire) || !accepted) (*loop)->request_stop();
+    if (stop_.load(std::memory_order_acquire) || !accepted || vehicle_replaced()) {
+      (*loop)->request_stop();
+    }
     const bool done = (*loop)->finished();
     while ((*loop)->poll(record)) {
       ++report.cycles;
@@ -340,14 +426,15 @@ template <VehicleModel V>
 Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
   PlannerParticipantReport report;
   report.policy = "lockstep";
-  report.time_scale = planning_.time_scale();
+  report.time_scale = planning_->time_scale();
   const std::int64_t run_until = config_.duration_s > 0.0
                                      ? platform::now_ns() + ns_of(config_.duration_s)
                                      : std::numeric_limits<std::int64_t>::max();
   VehicleSample state = first_state_;  // start-up's state: the first cycle plans for it
   bool have_state = true;
   std::int64_t next_progress = platform::now_ns();
-  while (!stop_.load(std::memory_order_acquire) && platform::now_ns() < run_until) {
+  while (!stop_.load(std::memory_order_acquire) && platform::now_ns() < run_until &&
+         !vehicle_replaced()) {
     // A new vehicle, described otherwise: planning stops.
     if (Status s = vehicle_accepted(); !s) return s.error();
     beat(report.cycles);  // no state from the vehicle, no cycle, no beat
@@ -357,18 +444,19 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
         continue;
       }
       state = handoffs_.states->read_buffer();
+      if (state.incarnation != planning_->vehicle_incarnation()) continue;  // replaced: ends
     }
     have_state = false;
     const std::int64_t start = platform::now_ns();
     MapChanges changes;
-    planning_.apply_tiles(changes);
-    while (planning_.map_sequence() < state.map_sequence &&
-           !stop_.load(std::memory_order_acquire)) {
+    planning_->apply_tiles(changes);
+    while (planning_->map_sequence() < state.map_sequence &&
+           !stop_.load(std::memory_order_acquire) && !vehicle_replaced()) {
       static_cast<void>(wakeups_.lockstep_inputs.wait(std::chrono::milliseconds(50)));
-      planning_.apply_tiles(changes);
+      planning_->apply_tiles(changes);
     }
     CycleRecord record;
-    record.outcome = planning_.lockstep_cycle(state, changes, start);
+    record.outcome = planning_->lockstep_cycle(state, changes, start);
     record.cycle = report.cycles++;
     record.release_ns = start;
     record.compute_ns = platform::now_ns() - start;
@@ -401,7 +489,8 @@ PlannerParticipantReport PlannerParticipantFor<V>::final_report(PlannerParticipa
   report.map_gaps = counters.map_gaps.load();
   report.map_heals = counters.map_heals.load();
   report.vehicle_losses = counters.vehicle_losses.load();
-  planning_.fill_report(report);
+  report.vehicle_restarts = counters.vehicle_restarts.load();
+  planning_->fill_report(report);
   return report;
 }
 
@@ -414,8 +503,8 @@ std::string PlannerParticipantFor<V>::progress_line(const PlannerParticipantRepo
                 static_cast<unsigned long long>(r.cycles),
                 static_cast<unsigned long long>(r.misses),
                 static_cast<unsigned long long>(publish_.published()),
-                static_cast<unsigned long long>(planning_.map_sequence()),
-                planning_.map_in_sync() ? "" : " (healing)",
+                static_cast<unsigned long long>(planning_->map_sequence()),
+                planning_->map_in_sync() ? "" : " (healing)",
                 static_cast<unsigned long long>(counters.rejected_vehicle_state.load() +
                                                 counters.rejected_map_update.load() +
                                                 counters.rejected_goal.load()),

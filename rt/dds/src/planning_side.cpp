@@ -40,6 +40,7 @@ void PlanningSide<V>::apply_tiles(MapChanges& changes) noexcept {
   OccupancyGrid& grid = session_->grid();
   while (handoffs_.tiles->try_pop(*tile_)) {
     const MapTile& t = *tile_;
+    if (t.vehicle_incarnation != vehicle_incarnation_) continue;  // an earlier vehicle's map
     const auto area = static_cast<std::size_t>(t.box.x1 - t.box.x0 + 1) *
                       static_cast<std::size_t>(t.box.y1 - t.box.y0 + 1);
     changes.apply(grid, t.box, std::span<const Cell>(t.cells.data(), area));
@@ -98,7 +99,8 @@ CycleOutcome PlanningSide<V>::cycle_body(std::int64_t release_ns,
   session.note_release(release_ns);
   MapChanges changes;
   apply_tiles(changes);
-  const bool new_state = handoffs_.states->update();
+  const bool new_state = handoffs_.states->update() &&
+                         handoffs_.states->read_buffer().incarnation == vehicle_incarnation_;
   if (new_state) session.note_state(handoffs_.states->read_buffer());
   session.chain_plan_start(release_ns, clock_);
   if (new_state) session.check_vehicle_follows();
@@ -172,6 +174,7 @@ void PlanningSide<V>::hand_over_plan(const CycleOutcome& outcome) noexcept {
     slot.step[i].duration_s = sent.steps[i].duration_s;
   }
   slot.committed_monotonic_ns = static_cast<std::uint64_t>(platform::now_ns());
+  slot.vehicle_incarnation = vehicle_incarnation_;
   handoffs_.plans->publish();
 }
 
@@ -194,6 +197,7 @@ void PlanningSide<V>::hand_over_status(const CycleOutcome& outcome,
   status.map_sequence = map_sequence_;
   status.map_checksum = map_checksum_;
   status.map_in_sync = map_in_sync_;
+  status.vehicle_incarnation = vehicle_incarnation_;
   handoffs_.statuses->publish();
 }
 

@@ -33,6 +33,10 @@ class PlanningSide {
         target_wanted_(target_wanted),
         clock_(clock) {}
 
+  // Start-up: the vehicle incarnation planned for (link/incarnation.hpp): tiles and states of
+  // another are ignored; 0 until one is known.
+  void set_vehicle(std::uint64_t incarnation) noexcept { vehicle_incarnation_ = incarnation; }
+  std::uint64_t vehicle_incarnation() const noexcept { return vehicle_incarnation_; }
   // Start-up: the planner's map, unknown everywhere, once the geometry is known.
   Status create_map(const link::MapGeometry& geometry);
   bool has_map() const noexcept { return session_.has_value(); }
@@ -92,6 +96,7 @@ class PlanningSide {
   std::uint64_t map_sequence_ = 0;  // the last update applied
   std::uint64_t map_checksum_ = 0;  // of the map after the last complete hand-over
   bool map_in_sync_ = false;
+  std::uint64_t vehicle_incarnation_ = 0;
 };
 
 extern template class PlanningSide<DdVelocity>;

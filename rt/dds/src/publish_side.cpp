@@ -58,6 +58,8 @@ void PublishSide::publish_plan(const PlanSlot& slot, PublishTiming& timing) {
   msg.committed_monotonic_ns = slot.committed_monotonic_ns;
   msg.kind = link::to_wire(kind_);
   msg.contingency = link::contingency_of(kind_);
+  msg.incarnation = incarnation_;
+  msg.vehicle_incarnation = slot.vehicle_incarnation;
   // Borrowed, not copied: DDS serialises during dds_write.
   msg.steps._buffer = const_cast<grip_msg_PlanStep*>(slot.step.data());
   msg.steps._length = slot.steps;
@@ -104,6 +106,10 @@ void PublishSide::publish_status(const CycleStatus& s) {
   msg.frontier_groups_given_up = s.frontier_groups_given_up;
   msg.target_x_m = s.target_x_m;
   msg.target_y_m = s.target_y_m;
+  msg.incarnation = incarnation_;
+  msg.vehicle_incarnation = s.vehicle_incarnation;
+  msg.vehicle_restarts =
+      static_cast<std::uint32_t>(counters_.vehicle_restarts.load(std::memory_order_relaxed));
   static_cast<void>(dds_.status.write(msg));
 }
 

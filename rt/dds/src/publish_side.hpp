@@ -35,9 +35,12 @@ struct PublishCounts {
 
 class PublishSide {
  public:
-  PublishSide(VehicleKind kind, PublishEntities entities, Handoffs& handoffs,
-              platform::Wakeup& wakeup, const ReceiveCounters& counters, const VehicleClock& clock)
+  // `incarnation`: the planner's (link/incarnation.hpp), on every plan and status.
+  PublishSide(VehicleKind kind, std::uint64_t incarnation, PublishEntities entities,
+              Handoffs& handoffs, platform::Wakeup& wakeup, const ReceiveCounters& counters,
+              const VehicleClock& clock)
       : kind_(kind),
+        incarnation_(incarnation),
         dds_(entities),
         handoffs_(handoffs),
         wakeup_(wakeup),
@@ -59,6 +62,7 @@ class PublishSide {
   void publish_status(const CycleStatus& status);
 
   VehicleKind kind_;
+  std::uint64_t incarnation_;
   PublishEntities dds_;
   Handoffs& handoffs_;
   platform::Wakeup& wakeup_;

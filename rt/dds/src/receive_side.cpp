@@ -15,9 +15,11 @@ namespace {
 
 namespace pdds = platform::dds;
 
-// The DDS time of a sample's source timestamp against now, for freshness checks.
-link::Verdict check_sample_freshness(const dds_sample_info_t& info) {
-  return link::check_freshness(info.source_timestamp, dds_time(), link::FreshnessLimits{});
+// The DDS time of a sample's source timestamp against now, for freshness checks: volatile
+// topics by default; a durable topic's samples may be as old as their writer.
+link::Verdict check_sample_freshness(const dds_sample_info_t& info,
+                                     const link::FreshnessLimits& limits = {}) {
+  return link::check_freshness(info.source_timestamp, dds_time(), limits);
 }
 
 }  // namespace
@@ -25,15 +27,65 @@ link::Verdict check_sample_freshness(const dds_sample_info_t& info) {
 template <VehicleModel V>
 ReceiveSide<V>::ReceiveSide(const V& vehicle, const VehicleParams& params, ReceiveEntities entities,
                             Handoffs& handoffs, platform::Wakeup& lockstep_inputs,
-                            std::uint32_t max_map_cells,
+                            std::uint32_t max_map_cells, std::int64_t takeover_ns,
                             std::function<void(const std::string&)> warn)
     : vehicle_(vehicle),
       dds_(entities),
       handoffs_(handoffs),
       lockstep_inputs_(lockstep_inputs),
       warn_(std::move(warn)),
+      max_map_cells_(max_map_cells),
       receiver_(max_map_cells),
+      vehicle_incarnation_(takeover_ns),
       description_(params) {}
+
+template <VehicleModel V>
+link::Verdict ReceiveSide<V>::follow(std::uint64_t incarnation, std::int64_t now_ns) {
+  const std::uint64_t before = vehicle_incarnation_.followed();
+  switch (vehicle_incarnation_.observe(incarnation, now_ns)) {
+    case link::Peer::kNone:
+      return link::Verdict{link::Rejection::kNoIncarnation, "incarnation"};
+    case link::Peer::kOther:
+      return link::Verdict{link::Rejection::kOtherIncarnation, "incarnation"};
+    case link::Peer::kSame:
+      return {};
+    case link::Peer::kNew:
+      break;
+  }
+  if (before != 0) {
+    // A restarted vehicle side: nothing the old one said holds for the new one.
+    last_state_stamp_ = 0;
+    last_state_sequence_ = 0;
+    last_state_local_ns_ = 0;
+    lockstep_seen_ = false;
+    clock_.reset();
+    forget_map();
+    counters_.vehicle_restarts.fetch_add(1, std::memory_order_relaxed);
+    warn("a new vehicle incarnation (" + std::to_string(incarnation) + ") replaced " +
+         std::to_string(before) + ": planning for it anew");
+  }
+  counters_.vehicle_incarnation.store(incarnation, std::memory_order_release);
+  return {};
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::forget_map() {
+  receiver_ = link::MapReceiver(max_map_cells_);
+  geometry_ready_.store(false, std::memory_order_release);
+  dirty_.clear();
+  tiles_x_ = 0;
+  tiles_y_ = 0;
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::refuse_geometry(const link::MapGeometry& geometry) {
+  {
+    const std::lock_guard<std::mutex> lock(geometry_mutex_);
+    refused_geometry_ = geometry;
+  }
+  counters_.rejected_map_update.fetch_add(1, std::memory_order_relaxed);
+  forget_map_.store(true, std::memory_order_release);
+}
 
 template <VehicleModel V>
 void ReceiveSide<V>::run(const std::atomic<bool>& stop_threads, const std::atomic<bool>& stopping) {
@@ -49,6 +101,7 @@ void ReceiveSide<V>::run(const std::atomic<bool>& stop_threads, const std::atomi
     // The timeout paces the periodic work: snapshot requests, tiles the ring had no room for,
     // liveliness.
     static_cast<void>(dds_.waitset.wait(std::chrono::milliseconds(20)));
+    if (forget_map_.exchange(false, std::memory_order_acq_rel)) forget_map();
     take_states(*state_buffer);
     take_maps(*map_buffer);
     take_goals(*goal_buffer);
@@ -78,9 +131,14 @@ void ReceiveSide<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& b
       if (msg.stamp_ns == last_state_stamp_ && msg.sequence_number == last_state_sequence_) {
         continue;
       }
-      link::Verdict verdict = check_sample_freshness(buffer.info(i));
-      if (verdict.ok()) verdict = link::check_vehicle_state(msg, vehicle_, last_state_stamp_);
       const std::int64_t now = platform::now_ns();
+      link::Verdict verdict = check_sample_freshness(buffer.info(i));
+      if (verdict.ok()) verdict = follow(msg.incarnation, now);
+      if (verdict.ok()) verdict = link::check_vehicle_state(msg, vehicle_, last_state_stamp_);
+      if (verdict.ok() &&
+          !link::stamp_lead_allowed(msg.stamp_ns, last_state_stamp_, now - last_state_local_ns_)) {
+        verdict = link::Verdict{link::Rejection::kStampInFuture, "stamp_ns"};
+      }
       if (!verdict.ok()) {
         counters_.rejected_vehicle_state.fetch_add(1, std::memory_order_relaxed);
         rejected("vehicle state", verdict, now);
@@ -88,6 +146,7 @@ void ReceiveSide<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& b
       }
       last_state_stamp_ = msg.stamp_ns;
       last_state_sequence_ = msg.sequence_number;
+      last_state_local_ns_ = now;
       lockstep_seen_ = msg.lockstep;
       clock_.observe(msg.stamp_ns, now, msg.time_scale);
       VehicleSample& sample = handoffs_.states->write_buffer();
@@ -98,6 +157,7 @@ void ReceiveSide<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& b
       sample.map_sequence = msg.map_sequence;
       sample.time_scale = msg.time_scale;
       sample.lockstep = msg.lockstep;
+      sample.incarnation = msg.incarnation;
       handoffs_.states->publish();
     }
   }
@@ -110,7 +170,11 @@ void ReceiveSide<V>::take_maps(pdds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer
     if (!taken.ok() || *taken == 0) return;
     for (std::size_t i = 0; i < *taken; ++i) {
       const std::int64_t now = platform::now_ns();
-      const link::Verdict fresh = check_sample_freshness(buffer.info(i));
+      link::Verdict fresh = check_sample_freshness(buffer.info(i));
+      if (fresh.ok()) fresh = follow(buffer[i].incarnation, now);
+      if (fresh.ok() && refused(link::geometry_of(buffer[i]))) {
+        fresh = link::Verdict{link::Rejection::kBadGeometry, "map geometry (the planner's)"};
+      }
       const bool had_map = receiver_.has_map();
       const link::MapApplied applied = fresh.ok()
                                            ? receiver_.apply(buffer[i])
@@ -121,7 +185,10 @@ void ReceiveSide<V>::take_maps(pdds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer
         continue;
       }
       if (!had_map) {
-        geometry_ = link::geometry_of(receiver_.map());
+        {
+          const std::lock_guard<std::mutex> lock(geometry_mutex_);
+          geometry_ = link::geometry_of(receiver_.map());
+        }
         tiles_x_ = (receiver_.map().width() + kTileSide - 1) / kTileSide;
         tiles_y_ = (receiver_.map().height() + kTileSide - 1) / kTileSide;
         dirty_.assign(static_cast<std::size_t>(tiles_x_ * tiles_y_), CellBox{});
@@ -146,7 +213,9 @@ void ReceiveSide<V>::take_goals(pdds::SampleBuffer<grip_msg_Goal, 4>& buffer) {
     const Result<std::size_t> taken = dds_.goals.take(buffer);
     if (!taken.ok() || *taken == 0) return;
     for (std::size_t i = 0; i < *taken; ++i) {
-      const link::Verdict fresh = check_sample_freshness(buffer.info(i));
+      // Durable: a goal set long before this planner started is still the goal.
+      const link::Verdict fresh =
+          check_sample_freshness(buffer.info(i), link::FreshnessLimits::durable());
       if (!fresh.ok()) {
         counters_.rejected_goal.fetch_add(1, std::memory_order_relaxed);
         rejected("goal", fresh, platform::now_ns());
@@ -208,6 +277,7 @@ void ReceiveSide<V>::hand_over_tiles() {
     tile->box = box;
     tile->map_sequence = receiver_.last_sequence();
     tile->in_sync = receiver_.in_sync();
+    tile->vehicle_incarnation = vehicle_incarnation_.followed();
     tile->last_of_batch = --pending == 0;
     const int w = box.x1 - box.x0 + 1;
     for (int y = box.y0; y <= box.y1; ++y) {

@@ -5,17 +5,24 @@
 // gaps), checks the vehicle's description (description_watch.hpp), watches the vehicle's
 // liveliness and hands everything over to the planning thread (handoff.hpp). An ordinary
 // thread: it may allocate, and a slow take delays nothing else.
+//
+// It follows one vehicle incarnation (link/incarnation.hpp): samples of another are rejected
+// while the one followed speaks; once it has been silent for one liveliness lease, the next
+// one is taken, and everything learned from the old one is forgotten: stamps, the map and its
+// geometry, the clock and time scale, lockstep mode. The run loop then starts planning anew.
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "description_watch.hpp"
 #include "goal.h"
+#include "grip/link/incarnation.hpp"
 #include "grip/link/map_sync.hpp"
 #include "grip/link/messages.hpp"
 #include "grip/platform/dds/reader.hpp"
@@ -39,6 +46,9 @@ struct ReceiveCounters {
   std::atomic<std::uint64_t> map_heals{0};
   std::atomic<std::uint64_t> vehicle_losses{0};
   std::atomic<bool> vehicle_alive{false};
+  // The vehicle incarnation followed (0: none yet), and how often a new one replaced it.
+  std::atomic<std::uint64_t> vehicle_incarnation{0};
+  std::atomic<std::uint64_t> vehicle_restarts{0};
 };
 
 // The entities the receive thread reads from and writes map requests with.
@@ -56,9 +66,11 @@ class ReceiveSide {
  public:
   // `params` are the planner's own, which `vehicle` was built from: descriptions are checked
   // against them. `warn` takes each warning line (no trailing newline); unset, to stderr.
+  // `takeover_ns`: a new vehicle incarnation is taken once the one followed has been silent
+  // this long (the liveliness lease).
   ReceiveSide(const V& vehicle, const VehicleParams& params, ReceiveEntities entities,
               Handoffs& handoffs, platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells,
-              std::function<void(const std::string&)> warn);
+              std::int64_t takeover_ns, std::function<void(const std::string&)> warn);
 
   // The receive thread's body: until `stop_threads`. `stopping` (planning was told to stop)
   // makes a vehicle that leaves the end of the run rather than a loss.
@@ -66,7 +78,13 @@ class ReceiveSide {
 
   // Any thread: the map's geometry, once the first valid update came (geometry() valid then).
   bool geometry_ready() const noexcept { return geometry_ready_.load(std::memory_order_acquire); }
-  const link::MapGeometry& geometry() const noexcept { return geometry_; }
+  link::MapGeometry geometry() const {
+    const std::lock_guard<std::mutex> lock(geometry_mutex_);
+    return geometry_;
+  }
+  // run()'s thread, start-up: the planner cannot plan on `geometry` (its planner refused it).
+  // Updates with it are rejected and counted from now on, and the map is forgotten.
+  void refuse_geometry(const link::MapGeometry& geometry);
   const ReceiveCounters& counters() const noexcept { return counters_; }
   const VehicleClock& clock() const noexcept { return clock_; }
   const DescriptionWatch& description() const noexcept { return description_; }
@@ -81,6 +99,14 @@ class ReceiveSide {
   void hand_over_tiles();
   void check_liveliness(bool stopping);
   void rejected(const char* topic, const link::Verdict& verdict, std::int64_t now_ns);
+  // Whether a sample of `incarnation` is from the vehicle followed (taking a new one over, and
+  // forgetting the old one's, when it is due); else the reason to reject it.
+  link::Verdict follow(std::uint64_t incarnation, std::int64_t now_ns);
+  void forget_map();
+  bool refused(const link::MapGeometry& geometry) const {
+    const std::lock_guard<std::mutex> lock(geometry_mutex_);
+    return refused_geometry_ && *refused_geometry_ == geometry;
+  }
   void warn(const std::string& line) const;
 
   V vehicle_;
@@ -88,12 +114,15 @@ class ReceiveSide {
   Handoffs& handoffs_;
   platform::Wakeup& lockstep_inputs_;  // lockstep: a state or map tiles were handed over
   std::function<void(const std::string&)> warn_;
+  std::uint32_t max_map_cells_;
   link::MapReceiver receiver_;
   std::vector<CellBox> dirty_;  // per tile
   int tiles_x_ = 0;
   int tiles_y_ = 0;
+  link::IncarnationTracker vehicle_incarnation_;
   std::uint64_t last_state_stamp_ = 0;
   std::uint64_t last_state_sequence_ = 0;
+  std::int64_t last_state_local_ns_ = 0;       // when the last state was accepted
   bool lockstep_seen_ = false;                 // the vehicle's states ask for lockstep
   std::optional<grip_msg_Goal> pending_goal_;  // arrived before the map: checked once it exists
   bool was_alive_ = false;
@@ -102,7 +131,10 @@ class ReceiveSide {
   std::unique_ptr<MapTile> handover_tile_ = std::make_unique<MapTile>();
 
   std::atomic<bool> geometry_ready_{false};
-  link::MapGeometry geometry_;  // written once before geometry_ready_ (release)
+  mutable std::mutex geometry_mutex_;  // run()'s thread reads the geometry at start-up
+  link::MapGeometry geometry_;
+  std::optional<link::MapGeometry> refused_geometry_;  // under geometry_mutex_
+  std::atomic<bool> forget_map_{false};
   ReceiveCounters counters_;
   VehicleClock clock_;
   DescriptionWatch description_;

@@ -183,7 +183,16 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
             "the planner gave up on " + given_up + " frontier group(s) it could not reach";
       }
     } else if (status && status->exploration_complete) {
-      report.result = "complete";
+      const double coverage = coverage_of(sensed, *reachable);
+      if (coverage >= kCompleteCoverage) {
+        report.result = "complete";
+      } else {
+        report.result = "done-early";
+        char reason[96];
+        std::snprintf(reason, sizeof reason, "the planner said it was done at coverage %.3f",
+                      coverage);
+        report.reason = reason;
+      }
     } else if (t_sim() >= config.max_sim_time_s) {
       report.result = "timeout";
     } else if (t_sim() - progress_at >= config.stuck_after_s) {
@@ -281,6 +290,12 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   report.start_mismatches = stats.plans_refused;
   report.max_start_error_m = stats.max_start_position_error_m;
   report.wall_time_s = static_cast<double>(platform::now_ns() - wall0) * 1e-9;
+  report.plans_from_other_planner = (*link)->plans_from_other_planner();
+  report.planner_failovers = (*link)->planner_failovers();
+  if (report.result != "complete" && report.result != "error" && report.distance_m < kNeverMovedM) {
+    report.reason = report.result + (report.reason.empty() ? "" : ": " + report.reason);
+    report.result = "never-moved";
+  }
   report.max_speed_m_s = vehicle.max_speed_m_s();
   report.known.emplace(sensed);
   report.last_status = status;

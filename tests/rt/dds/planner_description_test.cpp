@@ -130,15 +130,19 @@ class UndescribedVehicle {
     state.state[2] = scene_.start_theta_rad;
     state.state_dim = 3;
     state.time_scale = 1.0;
+    state.incarnation = kIncarnation;
     ASSERT_TRUE(states_->write(state).ok());
     if (sequence_ % 20 == 1) {
       sender_.send_snapshot(state.stamp_ns, [&](const grip_msg_MapUpdate& update) {
-        ASSERT_TRUE(maps_->write(update).ok());
+        grip_msg_MapUpdate stamped = update;
+        stamped.incarnation = kIncarnation;
+        ASSERT_TRUE(maps_->write(stamped).ok());
       });
     }
   }
 
  private:
+  static constexpr std::uint64_t kIncarnation = 7;
   Scene scene_;
   pdds::Participant participant_;
   std::optional<pdds::Writer<grip_msg_VehicleState>> states_;

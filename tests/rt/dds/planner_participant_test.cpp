@@ -162,7 +162,8 @@ TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   const auto bad_state = [&](auto&& mutate, std::optional<dds_time_t> at = std::nullopt) {
     grip_msg_VehicleState msg = vehicle->state();
-    msg.stamp_ns += 1'000'000'000;  // newer than any good one so far
+    msg.stamp_ns += 1'000'000'000;         // newer than any good one so far
+    msg.incarnation = link.incarnation();  // the vehicle's own: rejected for what is wrong
     mutate(msg);
     if (at) {
       ASSERT_TRUE(states.write_at(msg, *at).ok());
@@ -185,6 +186,10 @@ TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
   rejected(&S::rejected_vehicle_state,
            [&] { bad_state([](auto&) {}, dds_time() - DDS_SECS(60)); });  // long ago
   rejected(&S::rejected_vehicle_state, [&] { bad_state([](auto& m) { m.stamp_ns = 1; }); });
+  // No incarnation, or another one while the vehicle followed speaks (a second vehicle side).
+  rejected(&S::rejected_vehicle_state, [&] { bad_state([](auto& m) { m.incarnation = 0; }); });
+  rejected(&S::rejected_vehicle_state,
+           [&] { bad_state([](auto& m) { m.incarnation = ~m.incarnation; }); });
 
   grip_msg_MapUpdate patch{};
   link.map_sender();  // geometry of the real map
@@ -205,6 +210,7 @@ TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
     patch.cells._buffer = cells.data();
     patch.cells._length = 16;
     patch.cells._maximum = 16;
+    patch.incarnation = link.incarnation();
     mutate(patch);
     ASSERT_TRUE(maps.write(patch).ok());
   };
@@ -235,7 +241,7 @@ TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
   planner.planner->request_stop();
   const Result<PlannerParticipantReport>& result = planner.join();
   ASSERT_TRUE(result.ok()) << result.error().message;
-  EXPECT_EQ(result->rejected_vehicle_state, 7U);
+  EXPECT_EQ(result->rejected_vehicle_state, 9U);
   EXPECT_EQ(result->rejected_map_update, 5U);
   EXPECT_EQ(result->rejected_goal, 3U);
 }

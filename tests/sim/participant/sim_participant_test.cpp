@@ -1,7 +1,9 @@
 // The simulator is the vehicle of its configuration (SimRunConfig::vehicle): it describes itself
 // with those parameters, refuses plans beyond that vehicle's limits (a plan within the paper
 // car's is refused by a slower car) and collides with that vehicle's chassis (a wider one
-// touches a shelf the paper's passes). A planner is played by hand over DDS, on loopback.
+// touches a shelf the paper's passes). A planner is played by hand over DDS, on loopback. The
+// verdict is the figures': a planner that says it is done short of the coverage is `done-early`,
+// a vehicle that never moved says so.
 
 #include "grip/sim/sim_participant.hpp"
 
@@ -28,13 +30,17 @@ using namespace std::chrono_literals;
 
 // A planner that answers every vehicle state of a lockstep simulator with one plan holding
 // `control` for a cycle from that state, and the status that goes with it. It keeps the
-// vehicle's description.
+// vehicle's description. From cycle `done_from` on (0: never) its status says exploration is
+// complete.
 class HandPlanner {
  public:
-  HandPlanner(pdds::DomainId domain, VehicleKind kind, std::array<double, 2> control)
-      : kind_(kind), control_(control), participant_(pdds::Participant::create(domain).value()) {
-    const link::TopicNames topics =
-        link::TopicNames::create(::grip::testing::private_topic_prefix()).value();
+  HandPlanner(pdds::DomainId domain, VehicleKind kind, std::array<double, 2> control,
+              std::uint64_t done_from = 0)
+      : kind_(kind),
+        control_(control),
+        done_from_(done_from),
+        participant_(pdds::Participant::create(domain).value()) {
+    const link::TopicNames topics = link::TopicNames::create(::grip::testing::private_topic_prefix()).value();
     const link::LinkTiming timing;
     states_.emplace(pdds::Reader<grip_msg_VehicleState>::create(
                         participant_, &grip_msg_VehicleState_desc, topics.vehicle_state,
@@ -92,14 +98,21 @@ class HandPlanner {
     plan.steps._length = 1;
     plan.steps._maximum = 1;
     plan.contingency = link::contingency_of(kind_);
+    plan.incarnation = kIncarnation;
+    plan.vehicle_incarnation = state.incarnation;
     ASSERT_TRUE(plans_->write(plan).ok());
     grip_msg_PlannerStatus status{};
     status.cycle = cycle_;
+    status.incarnation = kIncarnation;
+    status.vehicle_incarnation = state.incarnation;
+    status.exploration_complete = done_from_ != 0 && cycle_ >= done_from_;
     ASSERT_TRUE(status_->write(status).ok());
   }
 
+  static constexpr std::uint64_t kIncarnation = 42;
   VehicleKind kind_;
   std::array<double, 2> control_;
+  std::uint64_t done_from_;
   pdds::Participant participant_;
   std::optional<pdds::Reader<grip_msg_VehicleState>> states_;
   std::optional<pdds::Reader<grip_msg_VehicleDescription>> descriptions_;
@@ -126,7 +139,8 @@ OccupancyGrid room_with_shelf() {
 // A lockstep run of `sim_time_s` with the hand planner sending `control` for every cycle.
 SimRunReport run_with_hand_planner(pdds::DomainId domain, const VehicleParams& vehicle,
                                    std::array<double, 2> control, double sim_time_s,
-                                   std::optional<grip_msg_VehicleDescription>* described) {
+                                   std::optional<grip_msg_VehicleDescription>* described,
+                                   std::uint64_t done_from = 0) {
   SimRunConfig config;
   config.domain = domain;
   config.topic_prefix = ::grip::testing::private_topic_prefix();
@@ -138,7 +152,7 @@ SimRunReport run_with_hand_planner(pdds::DomainId domain, const VehicleParams& v
   config.max_sim_time_s = sim_time_s;
   config.planner_wait = 20s;
   const OccupancyGrid truth = room_with_shelf();
-  HandPlanner planner(domain, vehicle_kind(vehicle), control);
+  HandPlanner planner(domain, vehicle_kind(vehicle), control, done_from);
   std::atomic<bool> done{false};
   std::thread planning([&] { planner.run(done); });
   const std::atomic<bool> stop{false};
@@ -165,11 +179,12 @@ TEST(SimParticipant, APlanWithinThePaperCarsLimitsIsRefusedByASlowerCar) {
   EXPECT_EQ(paper.plans_rejected, 0U);
   EXPECT_GT(paper.distance_m, 0.1);
 
-  // GIVEN the slower car, THEN every plan is refused, the car stays where it was, and it told
-  // the planner what it is.
+  // GIVEN the slower car, THEN every plan is refused, the car stays where it was (and the
+  // verdict says so), and it told the planner what it is.
   std::optional<grip_msg_VehicleDescription> described;
   const SimRunReport slower = run_with_hand_planner(kDomain, slow, half_g_forward, 1.0, &described);
-  EXPECT_EQ(slower.result, "timeout") << slower.reason;
+  EXPECT_EQ(slower.result, "never-moved") << slower.reason;
+  EXPECT_NE(slower.reason.find("timeout"), std::string::npos) << slower.reason;
   EXPECT_EQ(slower.plans_received, 0U);
   EXPECT_GE(slower.plans_rejected, 19U);
   EXPECT_EQ(slower.distance_m, 0.0);
@@ -195,6 +210,27 @@ TEST(SimParticipant, AWiderChassisTouchesAShelfThePapersPasses) {
   ASSERT_FALSE(wider.collision_events.empty());
   // It touched where the chassis, 0.25 m ahead of the axle, reached the shelf's start at 3 m.
   EXPECT_NEAR(wider.collision_events.front().x_m, 2.75, 0.05 + 1e-9);
+}
+
+// A planner that says it is done after two seconds of driving: the room is far from sensed.
+TEST(SimParticipant, APlannerDoneShortOfTheCoverageMakesTheRunDoneEarlyNotComplete) {
+  constexpr pdds::DomainId kDomain = 190;
+  const SimRunReport r =
+      run_with_hand_planner(kDomain, DdVelocityParams{}, {0.5, 0.5}, 60.0, nullptr, 40);
+  EXPECT_EQ(r.result, "done-early") << r.reason;
+  EXPECT_LT(r.coverage, kCompleteCoverage);
+  EXPECT_GT(r.distance_m, kNeverMovedM);
+  EXPECT_NE(r.reason.find("coverage"), std::string::npos) << r.reason;
+}
+
+// A planner that says it is done while the vehicle stands still: never moved, not complete.
+TEST(SimParticipant, AVehicleThatNeverMovedSaysSo) {
+  constexpr pdds::DomainId kDomain = 191;
+  const SimRunReport r =
+      run_with_hand_planner(kDomain, DdVelocityParams{}, {0.0, 0.0}, 60.0, nullptr, 5);
+  EXPECT_EQ(r.result, "never-moved") << r.reason;
+  EXPECT_EQ(r.distance_m, 0.0);
+  EXPECT_NE(r.reason.find("done-early"), std::string::npos) << r.reason;
 }
 
 }  // namespace

@@ -37,6 +37,7 @@ struct VehicleSample {
   std::uint64_t map_sequence = 0;  // the last map update sensed before it
   double time_scale = 1.0;         // vehicle time per wall-clock time
   bool lockstep = false;           // it waits for a plan for each state
+  std::uint64_t incarnation = 0;   // the vehicle side's (VehicleState.incarnation); 0: unknown
 };
 
 struct SessionConfig {

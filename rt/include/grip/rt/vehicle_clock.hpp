@@ -24,6 +24,12 @@ class VehicleClock {
     for (std::size_t i = 1; i < filled_; ++i) best = std::max(best, window_[i]);
     offset_ns_.store(best, std::memory_order_relaxed);
   }
+  // The observing thread: a new vehicle (its clock starts anew); the offset is 0 again.
+  void reset() noexcept {
+    next_ = 0;
+    filled_ = 0;
+    offset_ns_.store(0, std::memory_order_relaxed);
+  }
   // The vehicle's time at local_ns; the offset is 0 until the first observe().
   std::int64_t vehicle_ns(std::int64_t local_ns, double scale) const noexcept {
     return static_cast<std::int64_t>(scale * static_cast<double>(local_ns)) +

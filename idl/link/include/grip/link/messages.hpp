@@ -35,6 +35,9 @@ enum class Rejection : std::uint8_t {
   kBadSnapshot,  // snapshot part numbering inconsistent
   kGoalOutsideMap,
   kNonPositiveDuration,
+  // Incarnations (incarnation.hpp): a sender without one, or one the receiver does not follow.
+  kNoIncarnation,
+  kOtherIncarnation,
 };
 std::string_view rejection_name(Rejection r) noexcept;
 
@@ -46,9 +49,14 @@ struct Verdict {
 
 // Transport freshness: stamps compare DDS source timestamps with the reception time (both the
 // DDS clock, which DDS itself assumes synchronised between hosts).
+// Volatile topics only: a durable (TRANSIENT_LOCAL) sample is as old as its writer made it and
+// still true, so durable() accepts any age (and keeps the bound on the future).
 struct FreshnessLimits {
   std::int64_t max_future_ns = 1'000'000'000;  // clock skew tolerated
   std::int64_t max_age_ns = 5'000'000'000;     // older is stale, not news
+  static constexpr FreshnessLimits durable() noexcept {
+    return FreshnessLimits{1'000'000'000, INT64_MAX};
+  }
 };
 Verdict check_freshness(std::int64_t source_ns, std::int64_t reception_ns,
                         const FreshnessLimits& limits) noexcept;

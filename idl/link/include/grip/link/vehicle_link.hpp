@@ -4,14 +4,23 @@
 // publishes vehicle state, map updates (answering the planner's map requests with snapshots) and
 // goals; receives plans, validated, and the planner's status. Ordinary threads
 // only: a writer here may block up to its QoS max_blocking_time.
+//
+// One plan source (idl/README.md): the link has an incarnation of its own, stamped on every
+// state and map update, and follows one planner incarnation: the first that sends a plan, and
+// another only after the one followed has sent nothing for one liveliness lease (failover to a
+// standby). Plans of any other planner, and plans made for an earlier incarnation of this
+// vehicle, are rejected, counted and reported (the first of each kind as a warning).
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "goal.h"
 #include "grip/common/result.hpp"
+#include "grip/link/incarnation.hpp"
 #include "grip/link/map_sync.hpp"
 #include "grip/link/topics.hpp"
 #include "grip/link/vehicle_description.hpp"
@@ -35,6 +44,9 @@ struct VehicleLinkConfig {
   // are rejected.
   VehicleParams vehicle = CarParams{};
   LinkTiming timing;
+  // Warnings (a second plan source, plans for an earlier incarnation), one line each without a
+  // trailing newline. Unset: printed to stderr.
+  std::function<void(const std::string&)> on_warning;
 };
 
 class VehicleLink {
@@ -76,6 +88,14 @@ class VehicleLink {
   std::uint64_t snapshots_sent() const noexcept { return sender_.snapshots_sent(); }
   // Liveliness of the planner as seen from here (its plan writer).
   bool planner_alive() const;
+  // This vehicle side's incarnation (non-zero), and the planner's it follows (0: none yet).
+  std::uint64_t incarnation() const noexcept { return incarnation_; }
+  std::uint64_t planner_incarnation() const noexcept { return planner_.followed(); }
+  // Valid plans rejected because another planner incarnation is followed; plans made for an
+  // earlier incarnation of this vehicle; times a standby planner was taken over.
+  std::uint64_t plans_from_other_planner() const noexcept { return plans_other_planner_; }
+  std::uint64_t plans_for_other_vehicle() const noexcept { return plans_other_vehicle_; }
+  std::uint64_t planner_failovers() const noexcept { return planner_.switches(); }
   const platform::dds::Reader<grip_msg_Plan>& plan_reader() const noexcept { return dds_.plans; }
 
  private:
@@ -97,6 +117,9 @@ class VehicleLink {
 
   VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Entities entities);
   void send(const grip_msg_MapUpdate& update);
+  // A valid plan of the planner followed, made for this incarnation; counts the rest.
+  bool from_followed_planner(const grip_msg_Plan& plan);
+  void warn(const std::string& line) const;
 
   VehicleKind kind_;
   Entities dds_;
@@ -106,6 +129,11 @@ class VehicleLink {
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_PlannerStatus, 4>> status_buffer_;
   std::uint64_t plans_rejected_ = 0;
   std::uint64_t map_writes_failed_ = 0;
+  std::uint64_t incarnation_;
+  IncarnationTracker planner_;
+  std::uint64_t plans_other_planner_ = 0;
+  std::uint64_t plans_other_vehicle_ = 0;
+  std::function<void(const std::string&)> warn_;
 };
 
 }  // namespace grip::link

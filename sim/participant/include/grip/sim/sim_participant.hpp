@@ -14,6 +14,10 @@
 // reachable frontier remains (complete; stuck when it gave some up), at max_sim_time_s (timeout),
 // when for stuck_after_s of simulated time coverage has not grown and the vehicle has got no
 // nearer to unsensed ground (stuck), or when stopped.
+//
+// The verdict is the ground truth's, not the planner's word: `complete` only at a coverage of
+// at least kCompleteCoverage; a planner that said it was done short of that is `done-early`;
+// a vehicle that drove less than kNeverMovedM is `never-moved` (unless complete anyway).
 
 #include <array>
 #include <atomic>
@@ -33,6 +37,12 @@
 #include "planner_status.h"
 
 namespace grip::sim {
+
+// The fraction of the reachable free space a run must have sensed to be `complete`; every
+// verdict of completeness (this, `grip bench explore`'s targets) uses it.
+inline constexpr double kCompleteCoverage = 0.97;
+// A vehicle that drove less than this [m] never moved.
+inline constexpr double kNeverMovedM = 0.01;
 
 struct SimRunConfig {
   platform::dds::DomainId domain = 0;
@@ -85,7 +95,7 @@ struct SimProgress {
 };
 
 struct SimRunReport {
-  std::string result;     // complete, timeout, stuck, error
+  std::string result;     // complete, done-early, never-moved, timeout, stuck, error
   std::string reason;     // for error (and a word on the others)
   double coverage = 0.0;  // sensed fraction of the free space the vehicle can reach from the start
   std::uint64_t collisions = 0;
@@ -106,6 +116,10 @@ struct SimRunReport {
   std::uint64_t start_mismatches = 0;  // plans refused at their start: not where the vehicle was
   double max_start_error_m = 0.0;      // the largest of those position differences
   std::uint64_t planner_losses = 0;
+  // One plan source (link/vehicle_link.hpp): valid plans of a planner not followed, rejected;
+  // times a standby planner was taken over after the one followed went silent.
+  std::uint64_t plans_from_other_planner = 0;
+  std::uint64_t planner_failovers = 0;
   double wall_time_s = 0.0;
   std::vector<std::array<double, 2>> trajectory;     // (x, y) per tick
   std::vector<std::array<double, 2>> speed_profile;  // (t, |v|) per tick

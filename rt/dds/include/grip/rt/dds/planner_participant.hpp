@@ -19,7 +19,9 @@
 // builds the planner (all allocation happens here) and starts the planning thread. A vehicle
 // described otherwise is refused: run() returns the difference (kInvalidArgument), and nothing
 // is planned or published; one that describes itself otherwise later (a new incarnation) stops
-// planning the same way, with a warning.
+// planning the same way, with a warning. A vehicle side that restarts (a new incarnation in its
+// states: idl/README.md) is planned for anew: start-up again, with what was learned from the
+// old one forgotten. A map the planner cannot plan on is rejected and counted; start-up waits.
 // Topics carry `topic_prefix` (link/topics.hpp), so that two vehicles can share a domain.
 // Losing the vehicle (its liveliness lease expires) does not stop planning: the planner keeps
 // planning on its last map and state, and says so in its status; the controller, for its part,
@@ -125,8 +127,11 @@ struct PlannerParticipantReport {
   std::uint64_t map_sequence = 0;    // last update the planning thread applied
   std::uint64_t map_checksum = 0;    // of the planning thread's map at the end
   std::uint64_t vehicle_losses = 0;  // times the vehicle's liveliness was lost
-  bool explored = false;             // exploration ended: no reachable frontier remained
-  std::uint64_t resyncs = 0;         // fresh trees from where a vehicle off the tree will be
+  // Times a new vehicle incarnation replaced the one planned for (a restarted vehicle side);
+  // the report's other figures are of the planning for the last one.
+  std::uint64_t vehicle_restarts = 0;
+  bool explored = false;      // exploration ended: no reachable frontier remained
+  std::uint64_t resyncs = 0;  // fresh trees from where a vehicle off the tree will be
   bool allocations_counted = false;
   std::uint64_t heap_allocations_in_loop = 0;  // planning thread, after warm-up
   platform::ThreadUsage usage_in_loop{};
