@@ -147,7 +147,13 @@ std::optional<grip_msg_PlannerStatus> VehicleLink::take_status() {
   for (;;) {
     const Result<std::size_t> taken = dds_.status.take(*status_buffer_);
     if (!taken.ok() || *taken == 0) break;
-    newest = (*status_buffer_)[*taken - 1];  // plain data: a copy owns nothing
+    for (std::size_t i = 0; i < *taken; ++i) {
+      if (check_planner_status((*status_buffer_)[i]).ok()) {
+        newest = (*status_buffer_)[i];  // plain data: a copy owns nothing
+      } else {
+        ++statuses_rejected_;
+      }
+    }
   }
   return newest;
 }

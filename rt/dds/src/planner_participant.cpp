@@ -223,11 +223,16 @@ Status PlannerParticipantFor<V>::start_up() {
   std::optional<Goal> goal;
   std::optional<std::int64_t> synced_at;  // when the map was first in sync
   std::string refusal;
+  std::string map_refusal;  // why the map's geometry was refused
   while (!stop_.load(std::memory_order_acquire)) {
     if (Status s = vehicle_accepted(); !s) return s;
     const bool described = receive_.description().verdict() == Described::kMatches;
-    if (!planning_.has_map() && receive_.geometry_ready()) {
-      if (Status s = planning_.create_map(receive_.geometry()); !s) return s;
+    if (!planning_.has_map() && receive_.geometry_ready() && map_refusal.empty()) {
+      // A map this planner cannot use is the sender's error, not a reason to exit.
+      if (Status s = planning_.create_map(receive_.geometry()); !s) {
+        map_refusal = s.error().message;
+        receive_.refuse_geometry(map_refusal);
+      }
     }
     if (planning_.has_map()) {
       MapChanges ignored;  // no tree yet
@@ -254,7 +259,11 @@ Status PlannerParticipantFor<V>::start_up() {
     if (timeout > 0 && platform::now_ns() - started > timeout) {
       std::string missing;
       if (!described) missing += " a vehicle description (the vehicle did not describe itself),";
-      if (!in_sync) missing += " a map in sync,";
+      if (!in_sync) {
+        missing += map_refusal.empty()
+                       ? " a map in sync,"
+                       : " a map it can use (its geometry was refused: " + map_refusal + "),";
+      }
       if (!state) missing += " a vehicle state,";
       if (!goal && !config_.explore_without_goal) missing += " a goal,";
       if (missing.empty()) missing = " a start the planner accepts (" + refusal + "),";

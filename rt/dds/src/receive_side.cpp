@@ -252,6 +252,12 @@ void ReceiveSide<V>::rejected(const char* topic, const link::Verdict& verdict,
 }
 
 template <VehicleModel V>
+void ReceiveSide<V>::refuse_geometry(const std::string& why) {
+  counters_.rejected_map_update.fetch_add(1, std::memory_order_relaxed);
+  warn("rejected map update: the planner cannot use its geometry (" + why + ")");
+}
+
+template <VehicleModel V>
 void ReceiveSide<V>::warn(const std::string& line) const {
   if (warn_) {
     warn_(line);

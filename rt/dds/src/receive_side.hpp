@@ -68,6 +68,9 @@ class ReceiveSide {
   bool geometry_ready() const noexcept { return geometry_ready_.load(std::memory_order_acquire); }
   const link::MapGeometry& geometry() const noexcept { return geometry_; }
   const ReceiveCounters& counters() const noexcept { return counters_; }
+  // Start-up: the planner cannot build its map from geometry() (`why`). Counted as a rejected
+  // map update and said once; the planner keeps waiting rather than exiting.
+  void refuse_geometry(const std::string& why);
   const VehicleClock& clock() const noexcept { return clock_; }
   const DescriptionWatch& description() const noexcept { return description_; }
 
