@@ -17,6 +17,7 @@ packages=(
   stress-ng              # the load of `grip stress --load` (a built-in load is the fallback)
   libsystemd-dev         # sd_notify: readiness and watchdog of the grip-planner service
   util-linux             # setpriv: the scheduling tests drop capabilities with it
+  clang libclang-rt-14-dev  # scripts/fuzz.sh: the libFuzzer targets (tests/fuzz) and their runtime
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev  # optional: `grip bench ompl` (OMPL 1.5 links against these Boost libraries)
 )
 

@@ -22,17 +22,48 @@ Error parse_error(const std::string& name, int line, int column, const std::stri
                name + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message};
 }
 
+// Reads a whole map file, refusing what is not a regular file (a directory, a FIFO, a device
+// such as /dev/zero behind a symlink: reading one would block or never end) and anything over
+// kMaxMapFileBytes; the read itself stops at the cap, so a file that grows meanwhile is refused
+// too.
 Result<std::string> read_file(const std::string& path, const std::string& what) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) {
+    return Error{ErrorCode::kIo, path + ": cannot open " + what};
+  }
+  if (std::filesystem::is_directory(status)) {
     return Error{ErrorCode::kIo, path + ": " + what + " is a directory, not a file"};
   }
+  if (!std::filesystem::is_regular_file(status)) {
+    return Error{ErrorCode::kIo,
+                 path + ": " + what + " is not a regular file (a device, FIFO or socket); refused"};
+  }
+  const auto too_large = [&] {
+    return Error{ErrorCode::kIo, path + ": " + what + " is larger than " +
+                                     std::to_string(kMaxMapFileBytes) + " bytes; refused"};
+  };
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxMapFileBytes) return too_large();
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{ErrorCode::kIo, path + ": cannot open " + what};
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
+  std::string text;
+  char chunk[1 << 16];
+  while (in) {
+    in.read(chunk, sizeof chunk);
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (text.size() + got > kMaxMapFileBytes) return too_large();
+    text.append(chunk, got);
+  }
   if (in.bad()) return Error{ErrorCode::kIo, path + ": error while reading " + what};
-  return buffer.str();
+  return text;
+}
+
+// Shortest round-trip text of a number ("0.001", "10", "1e-300").
+std::string number_text(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
 }
 
 // Parses all of `text` as a whole number in [lo, hi].
@@ -225,8 +256,11 @@ Result<RosMetadata> read_metadata(const YAML::Node& root, const std::string& nam
   m.image_line = line_of(image);
 
   const YAML::Node resolution = root["resolution"];
-  if (!number(resolution, m.resolution) || m.resolution <= 0.0) {
-    return bad(resolution, "'resolution' must be a finite number > 0 [m/pixel]");
+  if (!number(resolution, m.resolution) || !(m.resolution >= OccupancyGrid::kMinResolutionM &&
+                                             m.resolution <= OccupancyGrid::kMaxResolutionM)) {
+    return bad(resolution, "'resolution' must be a number in [" +
+                               number_text(OccupancyGrid::kMinResolutionM) + ", " +
+                               number_text(OccupancyGrid::kMaxResolutionM) + "] [m/pixel]");
   }
 
   const YAML::Node origin = root["origin"];
@@ -235,6 +269,12 @@ Result<RosMetadata> read_metadata(const YAML::Node& root, const std::string& nam
       !number(origin[1], m.origin_y) || !number(origin[2], yaw)) {
     return parse_error(name, line_of(origin), column_of(origin),
                        "'origin' must be a list of three finite numbers [x, y, yaw]");
+  }
+  if (std::abs(m.origin_x) > OccupancyGrid::kMaxOriginM ||
+      std::abs(m.origin_y) > OccupancyGrid::kMaxOriginM) {
+    return parse_error(name, line_of(origin), column_of(origin),
+                       "'origin' x and y must lie within +-" +
+                           std::to_string(static_cast<long>(OccupancyGrid::kMaxOriginM)) + " m");
   }
   // yaw is accepted and not applied, as most of ROS does: the simulator works in the grid frame.
 
@@ -306,6 +346,13 @@ Status MapLoadOptions::validate() const {
   if (movingai_subdivision < 1 || movingai_subdivision > 100) {
     return invalid_argument("movingai_subdivision must be in [1, 100] (got " +
                             std::to_string(movingai_subdivision) + ")");
+  }
+  const double cell_m = movingai_cell_m / movingai_subdivision;
+  if (!(cell_m >= OccupancyGrid::kMinResolutionM && cell_m <= OccupancyGrid::kMaxResolutionM)) {
+    return invalid_argument("movingai_cell_m / movingai_subdivision must be in [" +
+                            number_text(OccupancyGrid::kMinResolutionM) + ", " +
+                            number_text(OccupancyGrid::kMaxResolutionM) +
+                            "] m per grid cell (got " + number_text(cell_m) + ")");
   }
   return Ok{};
 }
@@ -498,36 +545,34 @@ Result<LoadedMap> load_movingai_map(const std::string& path, const MapLoadOption
   return parse_movingai_map(*text, path, options);
 }
 
-Result<LoadedMap> load_ros_map(const std::string& yaml_path) {
-  auto text = read_file(yaml_path, "map_server YAML");
-  if (!text) return text.error();
-  RosMetadata meta;
-  try {
-    const YAML::Node root = YAML::Load(*text);
-    auto parsed = read_metadata(root, yaml_path);
-    if (!parsed) return parsed.error();
-    meta = std::move(parsed).value();
-  } catch (const YAML::Exception& e) {
-    return parse_error(yaml_path, e.mark.line + 1, e.mark.column + 1, e.msg);
-  }
+namespace {
 
+Result<RosMetadata> parse_ros_metadata(std::string_view yaml_text, const std::string& yaml_name) {
+  try {
+    const YAML::Node root = YAML::Load(std::string(yaml_text));
+    return read_metadata(root, yaml_name);
+  } catch (const YAML::Exception& e) {
+    return parse_error(yaml_name, e.mark.line + 1, e.mark.column + 1, e.msg);
+  }
+}
+
+// The image the metadata names, resolved against the YAML file's folder.
+std::string image_path_of(const RosMetadata& meta, const std::string& yaml_name) {
   std::filesystem::path image_path(meta.image);
   if (image_path.is_relative()) {
-    image_path = std::filesystem::path(yaml_path).parent_path() / image_path;
+    image_path = std::filesystem::path(yaml_name).parent_path() / image_path;
   }
-  auto bytes = read_file(image_path.string(), "PGM image");
-  if (!bytes) {
-    return Error{ErrorCode::kIo, yaml_path + ":" + std::to_string(meta.image_line) + ": image '" +
-                                     meta.image + "' cannot be read (" + bytes.error().message +
-                                     ")"};
-  }
-  auto image = parse_pgm(*bytes, image_path.string());
+  return image_path.string();
+}
+
+Result<LoadedMap> ros_map_of(const RosMetadata& meta, const std::string& yaml_name,
+                             std::string_view pgm_bytes, const std::string& image_name) {
+  auto image = parse_pgm(pgm_bytes, image_name);
   if (!image) return image.error();
   auto grid = OccupancyGrid::create(image->width, image->height, meta.resolution, meta.origin_x,
                                     meta.origin_y, Cell::kFree);
-  if (!grid) return Error{grid.error().code, yaml_path + ": " + grid.error().message};
-  LoadedMap map{
-      std::move(grid).value(), MapFormat::kRosMapServer, yaml_path, image_path.string(), 0, 0, 1};
+  if (!grid) return Error{grid.error().code, yaml_name + ": " + grid.error().message};
+  LoadedMap map{std::move(grid).value(), MapFormat::kRosMapServer, yaml_name, image_name, 0, 0, 1};
   for (int row = 0; row < image->height; ++row) {
     for (int col = 0; col < image->width; ++col) {
       const std::size_t i = static_cast<std::size_t>(row) * static_cast<std::size_t>(image->width) +
@@ -539,6 +584,30 @@ Result<LoadedMap> load_ros_map(const std::string& yaml_path) {
     }
   }
   return map;
+}
+
+}  // namespace
+
+Result<LoadedMap> parse_ros_map(std::string_view yaml_text, const std::string& yaml_name,
+                                std::string_view pgm_bytes) {
+  auto meta = parse_ros_metadata(yaml_text, yaml_name);
+  if (!meta) return meta.error();
+  return ros_map_of(*meta, yaml_name, pgm_bytes, image_path_of(*meta, yaml_name));
+}
+
+Result<LoadedMap> load_ros_map(const std::string& yaml_path) {
+  auto text = read_file(yaml_path, "map_server YAML");
+  if (!text) return text.error();
+  auto meta = parse_ros_metadata(*text, yaml_path);
+  if (!meta) return meta.error();
+  const std::string image_path = image_path_of(*meta, yaml_path);
+  auto bytes = read_file(image_path, "PGM image");
+  if (!bytes) {
+    return Error{ErrorCode::kIo, yaml_path + ":" + std::to_string(meta->image_line) + ": image '" +
+                                     meta->image + "' cannot be read (" + bytes.error().message +
+                                     ")"};
+  }
+  return ros_map_of(*meta, yaml_path, *bytes, image_path);
 }
 
 Result<LoadedMap> load_map(const std::string& path, const MapLoadOptions& options) {

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "grip/common/saturating_cast.hpp"
+
 namespace grip::sim {
 
 RetracedDistance retraced_distance(std::span<const std::array<double, 2>> trajectory, double cell_m,
@@ -12,9 +14,9 @@ RetracedDistance retraced_distance(std::span<const std::array<double, 2>> trajec
   if (trajectory.size() < 2 || !(cell_m > 0.0)) return out;
   const auto square_of = [cell_m](const std::array<double, 2>& p) {
     const auto ix =
-        static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p[0] / cell_m)));
+        static_cast<std::uint64_t>(saturating_cast<std::int64_t>(std::floor(p[0] / cell_m)));
     const auto iy =
-        static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p[1] / cell_m)));
+        static_cast<std::uint32_t>(saturating_cast<std::int64_t>(std::floor(p[1] / cell_m)));
     return (ix << 32) ^ iy;
   };
   // Per square the distance driven when the vehicle last left it.

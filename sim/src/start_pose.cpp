@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "grip/common/saturating_cast.hpp"
 #include "grip/world/clearance_map.hpp"
 #include "grip/world/collision_checker.hpp"
 
@@ -126,8 +127,9 @@ Status check_start(const LoadedMap& map, const Footprint& footprint, double chec
                                      number_text(check_margin_m) + " m,"
                                : std::string("the chassis");
   // Name the first obstacle cell the grown chassis touches, scanning its bounding box.
-  const int reach =
-      static_cast<int>(std::ceil(grown.circumscribed_radius() / grid.resolution())) + 1;
+  const int reach = ceil_to_count(grown.circumscribed_radius() / grid.resolution(), 0,
+                                  OccupancyGrid::kMaxSideCells) +
+                    1;
   for (int y = cy - reach; y <= cy + reach; ++y) {
     for (int x = cx - reach; x <= cx + reach; ++x) {
       if (!grid.in_bounds(x, y) || grid.at(x, y) == Cell::kFree) continue;

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include <sys/stat.h>
+
 namespace grip::sim {
 namespace {
 
@@ -207,7 +209,7 @@ TEST_F(MapFileTest, ABadYamlValueNamesLineAndColumn) {
       error_of(load_map(write("map.yaml",
                               "image: img.pgm\nresolution: -0.5\norigin: [0, 0, 0]\nnegate: 0\n"
                               "occupied_thresh: 0.65\nfree_thresh: 0.2\n")));
-  EXPECT_TRUE(contains(m, "map.yaml:2:13: 'resolution' must be a finite number > 0")) << m;
+  EXPECT_TRUE(contains(m, "map.yaml:2:13: 'resolution' must be a number in [0.001, 10]")) << m;
   EXPECT_TRUE(contains(m, "(got -0.5)")) << m;
   const std::string origin =
       error_of(load_map(write("o.yaml",
@@ -273,6 +275,84 @@ TEST_F(MapFileTest, SixteenBitBinaryPgmsAreRead) {
   EXPECT_EQ(image->pixels[1], 0);
   pgm[pgm.size() - 2] = '\x04';  // 1024 > maxval
   EXPECT_FALSE(parse_pgm(pgm, "x.pgm").ok());
+}
+
+// ---- Hostile files: refused with an error naming the file and the field, never a crash ------
+
+TEST_F(MapFileTest, ExtremeResolutionsAreRefusedNamingTheField) {
+  write("img.pgm", pgm_p5());
+  for (const char* resolution : {"1e-300", "0.0009", "10.5", "1e300", "4.9e-324"}) {
+    const std::string yaml =
+        write("map.yaml", std::string("image: img.pgm\nresolution: ") + resolution +
+                              "\norigin: [0, 0, 0]\nnegate: 0\n"
+                              "occupied_thresh: 0.65\nfree_thresh: 0.2\n");
+    const std::string m = error_of(load_map(yaml));
+    EXPECT_TRUE(contains(m, yaml + ":2:13: 'resolution' must be a number in [0.001, 10]")) << m;
+    EXPECT_TRUE(contains(m, std::string("(got ") + resolution + ")")) << m;
+  }
+  // The bounds themselves are accepted.
+  for (const char* resolution : {"0.001", "10"}) {
+    auto map = load_map(write("ok.yaml", std::string("image: img.pgm\nresolution: ") + resolution +
+                                             "\norigin: [0, 0, 0]\nnegate: 0\n"
+                                             "occupied_thresh: 0.65\nfree_thresh: 0.2\n"));
+    EXPECT_TRUE(map.ok()) << map.error().message;
+  }
+}
+
+TEST_F(MapFileTest, AFarAwayOriginIsRefusedNamingTheField) {
+  write("img.pgm", pgm_p5());
+  const std::string yaml = write("map.yaml",
+                                 "image: img.pgm\nresolution: 0.5\norigin: [1e9, 0, 0]\nnegate: 0\n"
+                                 "occupied_thresh: 0.65\nfree_thresh: 0.2\n");
+  const std::string m = error_of(load_map(yaml));
+  EXPECT_TRUE(contains(m, yaml + ":3:9: 'origin' x and y must lie within +-1000000 m")) << m;
+}
+
+TEST_F(MapFileTest, MovingAiCellSizesOutsideTheGridsBoundsAreRefused) {
+  const std::string path = write("good.map", kGoodMovingAi);
+  for (const double cell_m : {1e-300, 5e-3, 2000.0}) {
+    MapLoadOptions options;
+    options.movingai_cell_m = cell_m;
+    const std::string m = error_of(load_map(path, options), ErrorCode::kInvalidArgument);
+    EXPECT_TRUE(contains(m, "movingai_cell_m / movingai_subdivision must be in [0.001, 10]")) << m;
+  }
+}
+
+TEST_F(MapFileTest, ALinkToAnEndlessDeviceIsRefusedNotRead) {
+  for (const char* device : {"/dev/zero", "/dev/urandom"}) {
+    if (!fs::exists(device)) continue;
+    const fs::path map = dir_ / "endless.map";
+    fs::remove(map);
+    fs::create_symlink(device, map);
+    const std::string m = error_of(load_map(map.string()), ErrorCode::kIo);
+    EXPECT_TRUE(contains(m, map.string() + ": MovingAI map is not a regular file")) << m;
+    // The same device as the image a map_server YAML names.
+    fs::remove(dir_ / "img.pgm");
+    fs::create_symlink(device, dir_ / "img.pgm");
+    const std::string yaml = write("map.yaml", ros_yaml("img.pgm"));
+    const std::string image = error_of(load_map(yaml), ErrorCode::kIo);
+    EXPECT_TRUE(contains(image, yaml + ":1: image 'img.pgm' cannot be read")) << image;
+    EXPECT_TRUE(contains(image, "PGM image is not a regular file")) << image;
+  }
+}
+
+TEST_F(MapFileTest, AFifoIsRefusedWithoutBlocking) {
+  const fs::path fifo = dir_ / "pipe.yaml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string m = error_of(load_map(fifo.string()), ErrorCode::kIo);
+  EXPECT_TRUE(contains(m, fifo.string() + ": map_server YAML is not a regular file")) << m;
+}
+
+TEST_F(MapFileTest, AFileOverTheSizeCapIsRefusedUnread) {
+  const std::string path = write("huge.map", kGoodMovingAi);
+  fs::resize_file(path, kMaxMapFileBytes + 1);  // sparse: costs no disk
+  const std::string m = error_of(load_map(path), ErrorCode::kIo);
+  EXPECT_TRUE(contains(m, path + ": MovingAI map is larger than 67108864 bytes")) << m;
+}
+
+TEST_F(MapFileTest, APgmBeyondTheGridsCellCapIsRefused) {
+  const std::string m = error_of(parse_pgm("P5\n16384 16384\n255\n", "big.pgm"));
+  EXPECT_TRUE(contains(m, "big.pgm:3: image of 16384 x 16384 pixels exceeds 16777216")) << m;
 }
 
 }  // namespace

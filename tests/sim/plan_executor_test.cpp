@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -189,6 +190,32 @@ TEST_F(DdVelocityExecutorTest, BadPlansAreRejectedWithTheirReason) {
   EXPECT_EQ(executor.submit(good, 10 * kSecond), PlanVerdict::kQueueFull);
   EXPECT_EQ(executor.stats().plans_rejected, 7U);
   EXPECT_EQ(plan_verdict_name(PlanVerdict::kQueueFull), "queue-full");
+}
+
+TEST_F(DdVelocityExecutorTest, AHostilePlanIsRefusedAndTheVehicleKeepsItsSafeBehaviour) {
+  // GIVEN a vehicle executing a checked plan that ends at rest
+  ASSERT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 1.0)}, 0),
+            PlanVerdict::kAccepted);
+  executor.run_until(kSecond / 2);
+  // WHEN plans beyond the vehicle's limits arrive: wheels past their limit, a piece lasting
+  // years, infinite controls, a start so far ahead its end overflows
+  EXPECT_EQ(executor.submit(std::vector<PlanStep>{piece(3.5, 3.5, 1.0)}, kSecond),
+            PlanVerdict::kBadControl);
+  EXPECT_EQ(executor.submit(std::vector<PlanStep>{piece(1.0, 1.0, 1e9)}, kSecond),
+            PlanVerdict::kBadDuration);
+  EXPECT_EQ(
+      executor.submit(
+          std::vector<PlanStep>{piece(std::numeric_limits<double>::infinity(), 1.0, 1.0)}, kSecond),
+      PlanVerdict::kBadControl);
+  EXPECT_EQ(executor.submit(std::vector<PlanStep>(1000, piece(1.0, 1.0, 0.5)),
+                            std::numeric_limits<std::int64_t>::max() - 10),
+            PlanVerdict::kBadDuration);
+  // THEN each is refused and counted, and the vehicle finishes its plan and comes to rest
+  EXPECT_EQ(executor.stats().plans_rejected, 4U);
+  executor.run_until(3 * kSecond);
+  EXPECT_NEAR(executor.state()[0], 2.0, 1e-9);
+  EXPECT_EQ(executor.mode(), ExecutorMode::kAtRest);
+  EXPECT_EQ(executor.stats().collisions, 0U);
 }
 
 TEST_F(DdVelocityExecutorTest, ADifferentPredictedStartIsRecordedAndTheControlsStillRun) {

@@ -179,6 +179,27 @@ std::vector<fs::path> shared_maps() {
   return files;
 }
 
+// The crash: a map whose resolution is finite and positive but extreme ended in a
+// float-to-int overflow, then an out-of-bounds read. The loaders now refuse such maps; the
+// world code behind them must hold even when handed one directly.
+TEST(ChooseStartTest, AnExtremeResolutionIsRefusedOrHandledNeverACrash) {
+  for (const double resolution : {1e-300, 4.9e-324, 1e-9, 1e9, 1e300}) {
+    auto grid = OccupancyGrid::create(12, 10, resolution, 0.0, 0.0, Cell::kFree);
+    ASSERT_TRUE(grid.ok()) << resolution;
+    const LoadedMap map{std::move(grid).value(), MapFormat::kMovingAi, "extreme.map", {}, 0, 5, 1};
+    for (const Footprint& footprint : {kDd, kCar}) {
+      auto start = choose_start(map, footprint, 0.05);
+      if (start) {
+        EXPECT_TRUE(std::isfinite(start->x_m) && std::isfinite(start->y_m)) << resolution;
+      } else {
+        EXPECT_TRUE(contains(start.error().message, "extreme.map")) << start.error().message;
+      }
+      const Status s = check_start(map, footprint, 0.05, StartPose{1.0, 1.0, 0.3});
+      if (!s) EXPECT_TRUE(contains(s.error().message, "extreme.map")) << s.error().message;
+    }
+  }
+}
+
 TEST(SharedMapsTest, EveryMapLoadsAndHasAStartForTheLargestVehicle) {
   if (!fs::is_directory(GRIP_SHARED_MAPS_DIR)) {
     GTEST_SKIP() << GRIP_SHARED_MAPS_DIR << " does not exist";

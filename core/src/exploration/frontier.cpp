@@ -7,6 +7,7 @@
 
 #include "../world/validation.hpp"
 #include "grip/common/enum_names.hpp"
+#include "grip/common/saturating_cast.hpp"
 #include "sight_line.hpp"
 
 namespace grip {
@@ -84,7 +85,8 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
       approach_(field_.cell_count()),
       stamp_(field_.cell_count()),
       given_up_(field_.cell_count()) {
-  const int reach = static_cast<int>(std::floor(config.approach_range_m / resolution_m));
+  const int reach =
+      floor_to_cell(config.approach_range_m / resolution_m, 0, OccupancyGrid::kMaxSideCells);
   const double reach_cells = config.approach_range_m / resolution_m;
   for (int dy = -reach; dy <= reach; ++dy) {
     for (int dx = -reach; dx <= reach; ++dx) {
@@ -110,7 +112,8 @@ std::span<const std::uint32_t> FrontierMap::group_cells(std::uint32_t group) con
 }
 
 void FrontierMap::give_up(std::uint32_t group) noexcept {
-  const auto reach = static_cast<int>(std::floor(config_.give_up_radius_m / resolution_));
+  const auto reach =
+      floor_to_cell(config_.give_up_radius_m / resolution_, 0, OccupancyGrid::kMaxSideCells);
   const auto reach2 = reach * reach;
   for (const std::uint32_t c : group_cells(group)) {
     const int cx = static_cast<int>(c % static_cast<std::uint32_t>(width_));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "../world/validation.hpp"
+#include "grip/common/saturating_cast.hpp"
 #include "sight_line.hpp"
 
 namespace grip {
@@ -84,7 +85,7 @@ void PathSelector::cast_rays_from(const OccupancyGrid& grid, std::uint32_t targe
   const int ty = grid.cell_y(target);
   const double range_cells = config_.sensing_radius_m / resolution_;
   const double range2 = range_cells * range_cells;
-  const int r = static_cast<int>(std::ceil(range_cells));
+  const int r = ceil_to_count(range_cells, 0, OccupancyGrid::kMaxSideCells);
   const std::uint32_t bit = 1U << target_bit;
   const auto walk = [&](int px, int py) {
     detail::trace_cells(tx, ty, px, py, [&](int x, int y) {

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <string>
 
+#include "grip/common/saturating_cast.hpp"
+
 namespace grip {
 
 namespace {
 
 std::uint32_t to_steps(double seconds, double step) noexcept {
-  return static_cast<std::uint32_t>(std::llround(seconds / step));
+  return saturating_cast<std::uint32_t>(std::round(seconds / step));
 }
 
 }  // namespace

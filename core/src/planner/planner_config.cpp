@@ -5,6 +5,7 @@
 #include <string>
 
 #include "grip/common/enum_names.hpp"
+#include "grip/common/saturating_cast.hpp"
 
 namespace grip {
 
@@ -24,7 +25,9 @@ Result<Selection> selection_from_name(std::string_view name) {
 }
 
 std::uint32_t PlannerConfig::states_per_trajectory() const noexcept {
-  return static_cast<std::uint32_t>(std::ceil(max_plan_duration_s / record_step_s() - 1e-9)) + 1U;
+  return saturating_cast<std::uint32_t>(std::ceil(max_plan_duration_s / record_step_s() - 1e-9),
+                                        0U) +
+         1U;
 }
 
 namespace {

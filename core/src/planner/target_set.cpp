@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "grip/common/saturating_cast.hpp"
+
 namespace grip {
 
 namespace {
@@ -9,7 +11,8 @@ namespace {
 // Calls visit(index) for every free cell whose centre lies in the disk, row by row.
 template <typename Visit>
 void visit_disk_cells(const OccupancyGrid& grid, const Goal& disk, int gx, int gy, Visit&& visit) {
-  const int reach = static_cast<int>(std::ceil(disk.radius_m() / grid.resolution())) + 1;
+  const int reach =
+      ceil_to_count(disk.radius_m() / grid.resolution(), 0, OccupancyGrid::kMaxSideCells) + 1;
   for (int cy = gy - reach; cy <= gy + reach; ++cy) {
     for (int cx = gx - reach; cx <= gx + reach; ++cx) {
       if (!grid.in_bounds(cx, cy) || grid.at(cx, cy) != Cell::kFree) continue;

@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include "grip/common/saturating_cast.hpp"
+
 #include "validation.hpp"
 
 namespace grip {
@@ -92,8 +94,7 @@ CollisionChecker::CollisionChecker(const OccupancyGrid& grid, const Footprint& f
   // corners, radius sqrt((length / 2n)^2 + half_width^2). The same bound as above applies to
   // each disk's centre cell.
   const double length = grown.front_m + grown.rear_m;
-  disk_count_ =
-      std::clamp(static_cast<int>(std::ceil(length / (2.0 * grown.half_width_m))), 1, kMaxDisks);
+  disk_count_ = ceil_to_count(length / (2.0 * grown.half_width_m), 1, kMaxDisks);
   const double segment = length / disk_count_;
   for (int i = 0; i < disk_count_; ++i) {
     disk_offset_cells_[i] = (-grown.rear_m + segment * (i + 0.5)) * inv_resolution_;
@@ -236,8 +237,8 @@ bool CollisionChecker::exact(double x_m, double y_m, double c, double s) const n
   const double l1_cut = lvy > by ? 0.0 : -kInf;
   const double l2_cut = ty > lvy ? 0.0 : -kInf;
 
-  const int row_first = std::max(static_cast<int>(std::ceil(ymin)) - 1, 0);
-  const int row_last = std::min(static_cast<int>(ymax), static_cast<int>(height_) - 1);
+  const int row_first = std::max(saturating_cast<int>(std::ceil(ymin)) - 1, 0);
+  const int row_last = std::min(saturating_cast<int>(ymax), static_cast<int>(height_) - 1);
   const std::uint64_t* words =
       blocked_bits_.data() + static_cast<std::size_t>(row_first) * words_per_row_;
   for (int row = row_first; row <= row_last; ++row, words += words_per_row_) {
@@ -254,9 +255,9 @@ bool CollisionChecker::exact(double x_m, double y_m, double c, double s) const n
         kTouchTolerance;
     // Cells first..last (closed: a cell whose edge is exactly at lo or hi is touched). lo and
     // hi are positive up to rounding (bounds test above); the clamps keep reads in the row.
-    const auto lo_cell = static_cast<int>(lo);  // floor for lo >= 0
+    const auto lo_cell = saturating_cast<int>(lo);  // floor for lo >= 0
     const int first = std::max(lo_cell - (static_cast<double>(lo_cell) == lo ? 1 : 0), 0);
-    const int last = std::min(static_cast<int>(hi), static_cast<int>(width_) - 1);
+    const int last = std::min(saturating_cast<int>(hi), static_cast<int>(width_) - 1);
     const auto first_word = static_cast<std::uint32_t>(first) >> 6;
     const auto last_word = static_cast<std::uint32_t>(last) >> 6;
     const std::uint64_t first_mask = ~std::uint64_t{0} << (first & 63);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "grip/common/saturating_cast.hpp"
+
 namespace grip {
 
 namespace {
@@ -13,9 +15,7 @@ constexpr double kCornerTolerance = 1e-9;
 
 // floor() of a cell coordinate, clamped to [-1, limit]: a traversal never goes further than one
 // cell outside the grid, and the clamp keeps huge but finite coordinates out of int overflow.
-int clamped_floor(double u, int limit) noexcept {
-  return static_cast<int>(std::clamp(std::floor(u), -1.0, static_cast<double>(limit)));
-}
+int clamped_floor(double u, int limit) noexcept { return floor_to_cell(u, -1, limit); }
 
 struct Axis {
   int step = 0;          // +1, -1, or 0 when the segment does not move along this axis

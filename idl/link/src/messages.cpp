@@ -143,7 +143,14 @@ Verdict check_map_update(const grip_msg_MapUpdate& msg, const MapGeometry* expec
   if (!std::isfinite(msg.map_origin_x_m) || !std::isfinite(msg.map_origin_y_m)) {
     return reject(Rejection::kNotFinite, "map_origin");
   }
-  if (!(msg.resolution_m > 0.0)) return reject(Rejection::kBadGeometry, "resolution_m");
+  if (!(msg.resolution_m >= OccupancyGrid::kMinResolutionM &&
+        msg.resolution_m <= OccupancyGrid::kMaxResolutionM)) {
+    return reject(Rejection::kBadGeometry, "resolution_m");
+  }
+  if (std::abs(msg.map_origin_x_m) > OccupancyGrid::kMaxOriginM ||
+      std::abs(msg.map_origin_y_m) > OccupancyGrid::kMaxOriginM) {
+    return reject(Rejection::kBadGeometry, "map_origin");
+  }
   if (msg.map_width_cells == 0 || msg.map_height_cells == 0 ||
       msg.map_width_cells > static_cast<std::uint32_t>(OccupancyGrid::kMaxSideCells) ||
       msg.map_height_cells > static_cast<std::uint32_t>(OccupancyGrid::kMaxSideCells) ||
@@ -200,14 +207,31 @@ Verdict check_plan(const grip_msg_Plan& msg, VehicleKind kind) noexcept {
       (msg.steps._length > 0 && msg.steps._buffer == nullptr)) {
     return reject(Rejection::kWrongLength, "steps");
   }
-  if (msg.contingency != contingency_of(kind))
+  // Read as the integer on the wire, as the kind is.
+  std::int32_t contingency = 0;
+  static_assert(sizeof contingency == sizeof msg.contingency);
+  std::memcpy(&contingency, &msg.contingency, sizeof contingency);
+  if (contingency != static_cast<std::int32_t>(contingency_of(kind))) {
     return reject(Rejection::kOutOfLimits, "contingency");
+  }
   for (std::uint32_t i = 0; i < msg.steps._length; ++i) {
     const grip_msg_PlanStep& step = msg.steps._buffer[i];
     if (!all_finite(step.control, 2)) return reject(Rejection::kNotFinite, "steps.control");
     if (!std::isfinite(step.duration_s)) return reject(Rejection::kNotFinite, "steps.duration_s");
     if (!(step.duration_s > 0.0))
       return reject(Rejection::kNonPositiveDuration, "steps.duration_s");
+  }
+  return {};
+}
+
+Verdict check_planner_status(const grip_msg_PlannerStatus& msg) noexcept {
+  if (std::memchr(msg.policy, '\0', sizeof msg.policy) == nullptr) {
+    return reject(Rejection::kWrongLength, "policy");
+  }
+  if (!std::isfinite(msg.cycle_time_s)) return reject(Rejection::kNotFinite, "cycle_time_s");
+  if (!(msg.cycle_time_s >= 0.0)) return reject(Rejection::kOutOfLimits, "cycle_time_s");
+  if (!std::isfinite(msg.target_x_m) || !std::isfinite(msg.target_y_m)) {
+    return reject(Rejection::kNotFinite, "target_x_m / target_y_m");
   }
   return {};
 }

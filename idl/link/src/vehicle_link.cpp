@@ -192,6 +192,10 @@ std::optional<grip_msg_PlannerStatus> VehicleLink::take_status() {
     // run of this vehicle (or a standby) says nothing about this one.
     for (std::size_t i = 0; i < *taken; ++i) {
       const grip_msg_PlannerStatus& s = (*status_buffer_)[i];
+      if (!check_planner_status(s).ok()) {
+        ++statuses_rejected_;
+        continue;
+      }
       const bool followed = planner_.followed() == 0 || s.incarnation == planner_.followed();
       if (followed && s.vehicle_incarnation == incarnation_) newest = s;  // plain data
     }

@@ -275,6 +275,7 @@ Status PlannerParticipantFor<V>::start_up() {
   std::optional<Goal> goal;
   std::int64_t synced_at = -1;  // when the map was first in sync; -1: not yet
   std::string refusal;
+  std::string map_refusal;  // why the map's geometry was refused
   while (!stop_.load(std::memory_order_acquire)) {
     if (Status s = vehicle_accepted(); !s) return s;
     const bool described = receive_.description().verdict() == Described::kMatches;
@@ -294,6 +295,7 @@ Status PlannerParticipantFor<V>::start_up() {
         receive_.geometry_ready()) {
       const link::MapGeometry geometry = receive_.geometry();
       if (Status s = planning_->create_map(geometry); !s) {
+        map_refusal = s.error().message;
         refuse_map(geometry, s.error());
         planning_->set_vehicle(vehicle);
         continue;
@@ -315,6 +317,7 @@ Status PlannerParticipantFor<V>::start_up() {
     if (described && in_sync && state && (goal || explore)) {
       if (!planning_->prepared()) {
         if (Status s = planning_->prepare(*state, explore); !s) {
+          map_refusal = s.error().message;
           refuse_map(receive_.geometry(), s.error());
           planning_->set_vehicle(vehicle);
           synced_at = -1;
@@ -332,7 +335,11 @@ Status PlannerParticipantFor<V>::start_up() {
     if (timeout > 0 && platform::now_ns() - started > timeout) {
       std::string missing;
       if (!described) missing += " a vehicle description (the vehicle did not describe itself),";
-      if (!in_sync) missing += " a map in sync,";
+      if (!in_sync) {
+        missing += map_refusal.empty()
+                       ? " a map in sync,"
+                       : " a map it can use (its geometry was refused: " + map_refusal + "),";
+      }
       if (!state) missing += " a vehicle state,";
       if (!goal && !config_.explore_without_goal) missing += " a goal,";
       if (missing.empty()) missing = " a start the planner accepts (" + refusal + "),";

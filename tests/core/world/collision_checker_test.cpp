@@ -117,6 +117,26 @@ TEST(CollisionCheckerTest, CreateRejectsBadFootprintsAndMarginsNamingThem) {
   EXPECT_NE(shared.error().message.find("shared_clearance_m"), std::string::npos);
 }
 
+TEST(CollisionCheckerTest, ExtremeResolutionsAndPosesNeverOverflow) {
+  // Every float-to-int conversion saturates or is checked first (run under UBSan with
+  // float-cast-overflow): no resolution, pose or heading can index outside the grid.
+  constexpr double kHuge = 1e300;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double resolution : {4.9e-324, 1e-300, 1e-6, 0.1, 1e6, 1e300}) {
+    auto grid = OccupancyGrid::create(70, 65, resolution, -3.0, 2.0, Cell::kFree);
+    ASSERT_TRUE(grid.ok());
+    auto checker = CollisionChecker::create(*grid, Footprint{0.6, 0.15, 0.2}, 0.05, 0.3);
+    ASSERT_TRUE(checker.ok()) << checker.error().message;
+    for (const double x : {-kHuge, -3.0, 0.0, 1.0, 3.5, kHuge, inf}) {
+      for (const double theta : {0.0, 0.8, -2.0, 1e20}) {
+        static_cast<void>(checker->is_free(x, x * 0.5, theta));
+        static_cast<void>(checker->rectangle_is_free_exact(x, 2.5, theta));
+      }
+    }
+    checker->refresh();
+  }
+}
+
 TEST(CollisionCheckerTest, ReportsItsFootprintAndMargin) {
   const OccupancyGrid grid = make_grid(10, 10, 0.1);
   const CollisionChecker checker = make_checker(grid, kRobot, 0.05);

@@ -132,6 +132,15 @@ TEST(Messages, BadMapUpdatesAreRejectedWithTheirReason) {
       {"origin inf", [](Patch& p) { p.msg.map_origin_x_m = kInf; }, Rejection::kNotFinite},
       {"other map", [](Patch& p) { p.msg.map_width_cells = 12; }, Rejection::kGeometryMismatch},
       {"huge map", [](Patch& p) { p.msg.map_height_cells = 100000; }, Rejection::kBadGeometry},
+      // Valid-looking geometry the planner's grids are not sized for (the issue's "unusual
+      // resolution" that made the planner exit at start-up): rejected and counted instead.
+      {"resolution 1e-300", [](Patch& p) { p.msg.resolution_m = 1e-300; }, Rejection::kBadGeometry},
+      {"resolution below 1 mm", [](Patch& p) { p.msg.resolution_m = 0.0009; },
+       Rejection::kBadGeometry},
+      {"resolution above 10 m", [](Patch& p) { p.msg.resolution_m = 10.5; },
+       Rejection::kBadGeometry},
+      {"resolution 1e300", [](Patch& p) { p.msg.resolution_m = 1e300; }, Rejection::kBadGeometry},
+      {"origin far away", [](Patch& p) { p.msg.map_origin_y_m = -2e6; }, Rejection::kBadGeometry},
       {"snapshot part",
        [](Patch& p) { p.msg.snapshot_id = 1, p.msg.snapshot_part = 2, p.msg.snapshot_parts = 2; },
        Rejection::kBadSnapshot},
@@ -195,6 +204,38 @@ TEST(Messages, BadPlansAreRejectedByTheController) {
   plan.steps._length = 3;
   plan.start_state[0] = kNaN;
   EXPECT_EQ(check_plan(plan, VehicleKind::kCar).reason, Rejection::kNotFinite);
+}
+
+TEST(Messages, APlanWithAContingencyOutsideItsEnumIsRejected) {
+  grip_msg_Plan plan{};
+  plan.kind = grip_msg_CAR;
+  plan.state_dim = 5;
+  plan.contingency = contingency_of(VehicleKind::kCar);
+  ASSERT_TRUE(check_plan(plan, VehicleKind::kCar).ok());
+  // Read as the integer on the wire: loading a value outside the enum as the enum is undefined.
+  const std::int32_t raw = 77;
+  std::memcpy(&plan.contingency, &raw, sizeof raw);
+  const Verdict v = check_plan(plan, VehicleKind::kCar);
+  EXPECT_EQ(v.reason, Rejection::kOutOfLimits);
+  EXPECT_STREQ(v.field, "contingency");
+}
+
+TEST(Messages, PlannerStatusesWithBrokenFieldsAreRejected) {
+  grip_msg_PlannerStatus status{};
+  std::strcpy(status.policy, "grip");
+  status.cycle_time_s = 0.01;
+  EXPECT_TRUE(check_planner_status(status).ok());
+  grip_msg_PlannerStatus bad = status;
+  std::memset(bad.policy, 'x', sizeof bad.policy);  // no terminating NUL
+  EXPECT_EQ(check_planner_status(bad).reason, Rejection::kWrongLength);
+  bad = status;
+  bad.cycle_time_s = kNaN;
+  EXPECT_EQ(check_planner_status(bad).reason, Rejection::kNotFinite);
+  bad.cycle_time_s = -1.0;
+  EXPECT_EQ(check_planner_status(bad).reason, Rejection::kOutOfLimits);
+  bad = status;
+  bad.target_y_m = kInf;
+  EXPECT_EQ(check_planner_status(bad).reason, Rejection::kNotFinite);
 }
 
 }  // namespace

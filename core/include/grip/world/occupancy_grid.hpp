@@ -45,6 +45,12 @@ class OccupancyGrid {
   // Limits that keep every index and every distance (world/distance_field.hpp) in 32 bits.
   static constexpr int kMaxSideCells = 16384;
   static constexpr std::uint32_t kMaxCells = 1U << 24;
+  // The geometry a map from outside (a map file, a received map update) may have: beyond
+  // these, the planner's and simulator's grids, footprints and sensor windows are not sized
+  // for it. create() itself accepts any finite positive resolution and finite origin.
+  static constexpr double kMinResolutionM = 1e-3;  // [m] 1 mm per cell
+  static constexpr double kMaxResolutionM = 10.0;  // [m] per cell
+  static constexpr double kMaxOriginM = 1e6;       // [m] |origin_x|, |origin_y|
 
   // Errors (kInvalidArgument) name the bad parameter and its value: a size outside
   // [1, kMaxSideCells] or a product above kMaxCells, resolution not finite or <= 0, a non-finite

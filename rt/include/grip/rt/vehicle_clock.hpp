@@ -9,6 +9,9 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+
+#include "grip/common/saturating_cast.hpp"
 
 namespace grip::rt {
 
@@ -16,8 +19,9 @@ class VehicleClock {
  public:
   // A state stamped stamp_ns (vehicle time) received at local_ns (CLOCK_MONOTONIC).
   void observe(std::uint64_t stamp_ns, std::int64_t local_ns, double scale) noexcept {
-    const auto candidate = static_cast<std::int64_t>(static_cast<double>(stamp_ns) -
-                                                     scale * static_cast<double>(local_ns));
+    // Saturated: a stamp far beyond int64 (validation bounds only its order) must not overflow.
+    const auto candidate = saturating_cast<std::int64_t>(static_cast<double>(stamp_ns) -
+                                                         scale * static_cast<double>(local_ns));
     window_[next_++ % window_.size()] = candidate;
     filled_ = std::min<std::size_t>(filled_ + 1, window_.size());
     std::int64_t best = window_[0];
@@ -32,8 +36,15 @@ class VehicleClock {
   }
   // The vehicle's time at local_ns; the offset is 0 until the first observe().
   std::int64_t vehicle_ns(std::int64_t local_ns, double scale) const noexcept {
-    return static_cast<std::int64_t>(scale * static_cast<double>(local_ns)) +
-           offset_ns_.load(std::memory_order_relaxed);
+    const std::int64_t scaled =
+        saturating_cast<std::int64_t>(scale * static_cast<double>(local_ns));
+    const std::int64_t offset = offset_ns_.load(std::memory_order_relaxed);
+    std::int64_t sum = 0;
+    if (__builtin_add_overflow(scaled, offset, &sum)) {
+      return offset > 0 ? std::numeric_limits<std::int64_t>::max()
+                        : std::numeric_limits<std::int64_t>::min();
+    }
+    return sum;
   }
 
  private:

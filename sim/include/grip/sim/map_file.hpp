@@ -16,8 +16,10 @@
 //
 // Errors name the file and the line (and column where it helps) in the compiler style
 // "path:line:column: message": kIo when a file cannot be read, kParse for malformed content,
-// kInvalidArgument for bad options. Nothing here throws; all of it runs at start-up and may
-// allocate.
+// kInvalidArgument for bad options. Semantic bounds apply as well as syntax: resolution in
+// [OccupancyGrid::kMinResolutionM, kMaxResolutionM], origin within kMaxOriginM, sizes within
+// the grid's limits, the file regular and at most kMaxMapFileBytes. Nothing here throws; all of it
+// runs at start-up and may allocate.
 
 #include <cstdint>
 #include <string>
@@ -30,6 +32,10 @@
 namespace grip::sim {
 
 enum class MapFormat : std::uint8_t { kMovingAi, kRosMapServer };
+
+// The largest map file read (a PGM of the largest grid, 2 bytes a pixel, fits; ASCII PGMs that
+// large are refused). Larger files, and anything that is not a regular file, are kIo errors.
+inline constexpr std::uintmax_t kMaxMapFileBytes = std::uintmax_t{64} << 20;
 
 struct MapLoadOptions {
   double movingai_cell_m = 1.0;   // [m] side of one MovingAI map cell
@@ -61,6 +67,10 @@ Result<LoadedMap> load_ros_map(const std::string& yaml_path);
 // The parsers behind the loaders, on text already read (`name` is used in messages).
 Result<LoadedMap> parse_movingai_map(std::string_view text, const std::string& name,
                                      const MapLoadOptions& options = {});
+// A map_server map from its YAML text and the bytes of the PGM it names (the image is not
+// read: `pgm_bytes` stands for it, and its resolved path is used in messages).
+Result<LoadedMap> parse_ros_map(std::string_view yaml_text, const std::string& yaml_name,
+                                std::string_view pgm_bytes);
 
 // A PGM image (P5 binary or P2 ASCII), rows top first as in the file.
 struct PgmImage {

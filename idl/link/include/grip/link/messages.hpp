@@ -13,6 +13,7 @@
 #include "grip/world/occupancy_grid.hpp"
 #include "map_update.h"
 #include "plan.h"
+#include "planner_status.h"
 #include "vehicle_state.h"
 
 namespace grip::link {
@@ -87,7 +88,10 @@ struct MapGeometry {
 MapGeometry geometry_of(const grip_msg_MapUpdate& msg) noexcept;
 MapGeometry geometry_of(const OccupancyGrid& grid) noexcept;
 
-// A map update: geometry valid (and equal to `expected` when given), the patch inside the map,
+// A map update: geometry valid (finite; resolution in [OccupancyGrid::kMinResolutionM,
+// kMaxResolutionM], origin within kMaxOriginM, sizes within the grid's limits and
+// max_map_cells: a map the planner's grids are not sized for is rejected here, not at
+// start-up), equal to `expected` when given, the patch inside the map,
 // the cell sequence exactly width x height long with values 0..2, snapshot fields consistent.
 Verdict check_map_update(const grip_msg_MapUpdate& msg, const MapGeometry* expected,
                          std::uint32_t max_map_cells) noexcept;
@@ -102,6 +106,10 @@ inline Goal goal_from_wire(const grip_msg_Goal& msg) noexcept {
 // finite, a start state of the right dimension and finite. A plan without steps is valid: it
 // says "nothing new from the start time" (idl/plan.idl).
 Verdict check_plan(const grip_msg_Plan& msg, VehicleKind kind) noexcept;
+
+// A planner status, for the vehicle side: the policy a terminated string, the cycle time finite
+// and >= 0, the target finite.
+Verdict check_planner_status(const grip_msg_PlannerStatus& msg) noexcept;
 
 // The braking maneuver each vehicle's plans end in (its contingency, the paper's Sec. III-C).
 grip_msg_ContingencyKind contingency_of(VehicleKind kind) noexcept;

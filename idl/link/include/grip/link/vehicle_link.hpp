@@ -75,6 +75,7 @@ class VehicleLink {
   std::size_t take_plans(FunctionRef<void(const grip_msg_Plan&)> visit);
   // Sleeps until a plan or a map request arrives, or `timeout` passes (whichever first).
   void wait_for_plan_or_request(std::chrono::nanoseconds timeout);
+  // The newest valid status received since the last call (invalid ones are counted).
   std::optional<grip_msg_PlannerStatus> take_status();
   // The newest status, once one of cycle `min_cycle` or later has arrived or `timeout` passed
   // (then the newest older one, if any). Lockstep: the status that goes with a plan.
@@ -84,6 +85,7 @@ class VehicleLink {
   OccupancyGrid& map() noexcept { return sender_.map(); }
   const MapSender& map_sender() const noexcept { return sender_; }
   std::uint64_t plans_rejected() const noexcept { return plans_rejected_; }
+  std::uint64_t statuses_rejected() const noexcept { return statuses_rejected_; }
   std::uint64_t map_writes_failed() const noexcept { return map_writes_failed_; }
   std::uint64_t snapshots_sent() const noexcept { return sender_.snapshots_sent(); }
   // Liveliness of the planner as seen from here (its plan writer).
@@ -128,6 +130,7 @@ class VehicleLink {
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_MapRequest, 8>> request_buffer_;
   std::unique_ptr<platform::dds::SampleBuffer<grip_msg_PlannerStatus, 4>> status_buffer_;
   std::uint64_t plans_rejected_ = 0;
+  std::uint64_t statuses_rejected_ = 0;  // invalid statuses (check_planner_status), dropped
   std::uint64_t map_writes_failed_ = 0;
   std::uint64_t incarnation_;
   IncarnationTracker planner_;
