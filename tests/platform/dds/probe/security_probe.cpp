@@ -7,9 +7,10 @@
 // participant. write: writes a sample on each of the grip TOPICs (grip_plan,
 // grip_vehicle_state, grip_map_update, grip_goal; prefixed names allowed) every 20 ms, as a
 // hostile participant would (a plan of full speed ahead, a state stamped far in the future, a
-// map update, a goal); read: takes what arrives. Prints one line per topic, "TOPIC wrote N" or
-// "TOPIC received N" (or "TOPIC refused: why" for a writer or reader it may not create), and
-// exits 0; 3 when the participant cannot be created.
+// map update, a goal; an unauthenticated writer marks its samples); read: takes what arrives,
+// not counting the marked samples (an unauthenticated reader hears an unauthenticated writer).
+// Prints one line per topic, "TOPIC wrote N" or "TOPIC received N" (or "TOPIC refused: why" for a
+// writer or reader it may not create), and exits 0; 3 when the participant cannot be created.
 
 #include <chrono>
 #include <cstdio>
@@ -43,12 +44,21 @@ bool ends_with(const std::string& s, const char* tail) {
   return s.size() >= n && s.compare(s.size() - n, n, tail) == 0;
 }
 
+// Set in the sequence numbers (a plan's cycle) of what an unauthenticated writer sends.
+constexpr std::uint64_t kMarked = 1ULL << 60;
+std::uint64_t g_mark = 0;  // kMarked in an unauthenticated writer
+
+bool marked(const grip_msg_Plan& plan) { return (plan.cycle & kMarked) != 0; }
+bool marked(const grip_msg_VehicleState& state) { return (state.sequence_number & kMarked) != 0; }
+bool marked(const grip_msg_MapUpdate& update) { return (update.sequence_number & kMarked) != 0; }
+bool marked(const grip_msg_Goal& goal) { return (goal.sequence_number & kMarked) != 0; }
+
 // The samples a hostile participant sends, valid-looking on their own.
 std::vector<grip_msg_PlanStep> g_steps(100, grip_msg_PlanStep{{1.0, 0.0}, 0.05});
 
 void fill(grip_msg_Plan& plan, std::uint64_t n) {
   plan = grip_msg_Plan{};
-  plan.cycle = n;
+  plan.cycle = n | g_mark;
   plan.kind = grip_msg_DD_VELOCITY;
   plan.contingency = grip_msg_BRAKE_STRAIGHT;
   plan.steps._buffer = g_steps.data();
@@ -58,7 +68,7 @@ void fill(grip_msg_Plan& plan, std::uint64_t n) {
 void fill(grip_msg_VehicleState& state, std::uint64_t n) {
   state = grip_msg_VehicleState{};
   state.stamp_ns = 1ULL << 62;  // far in the future
-  state.sequence_number = n;
+  state.sequence_number = n | g_mark;
   state.kind = grip_msg_DD_VELOCITY;
   state.state_dim = 3;
   state.time_scale = 1.0;
@@ -66,7 +76,7 @@ void fill(grip_msg_VehicleState& state, std::uint64_t n) {
 std::vector<std::uint8_t> g_cells(16, 0);
 void fill(grip_msg_MapUpdate& update, std::uint64_t n) {
   update = grip_msg_MapUpdate{};
-  update.sequence_number = n;
+  update.sequence_number = n | g_mark;
   update.map_width_cells = 300;
   update.map_height_cells = 300;
   update.resolution_m = 0.1;
@@ -78,7 +88,7 @@ void fill(grip_msg_MapUpdate& update, std::uint64_t n) {
 }
 void fill(grip_msg_Goal& goal, std::uint64_t n) {
   goal = grip_msg_Goal{};
-  goal.sequence_number = n;
+  goal.sequence_number = n | g_mark;
   goal.x_m = 1.0;
   goal.y_m = 1.0;
   goal.radius_m = 0.5;
@@ -113,7 +123,9 @@ class TopicReader : public TopicEnd {
       : reader_(std::move(reader)), buffer_(std::make_unique<SampleBuffer<T, 16>>(descriptor)) {}
   void step(std::uint64_t) override {
     const Result<std::size_t> taken = reader_.take(*buffer_);
-    if (taken) count += *taken;
+    for (std::size_t i = 0; taken && i < *taken; ++i) {
+      if (!marked((*buffer_)[i])) ++count;
+    }
   }
 
  private:
@@ -172,6 +184,7 @@ int main(int argc, char** argv) {
   const double seconds = std::atof(argv[argc - 1]);
   std::optional<SecurityFiles> security;
   if (keys != "-") security = SecurityFiles::from_directory(keys);
+  if (!security) g_mark = kMarked;
   auto participant = Participant::create(domain, {}, security);
   if (!participant) {
     std::printf("participant refused: %s\n", participant.error().message.c_str());
