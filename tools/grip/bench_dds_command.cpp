@@ -17,6 +17,9 @@
 // summaries; the k-th largest of its per-second maxima (k = 1% of its round trips) is a lower bound
 // of its pooled p99, since those maxima are k of its samples. Medians of per-second p99s would hide
 // the machine's occasional stalls on ddsperf's side only, while ours are pooled.
+// With --security DIR each round runs the planner side twice, without and then with DDS Security
+// (the planner's and the vehicle's keys of DIR: authenticated, every grip topic encrypted), and
+// the two pooled p99s are compared: the cost of encryption on plan delivery, in one run.
 // A benchmark: it measures and prints, it asserts nothing.
 
 #include <algorithm>
@@ -58,6 +61,7 @@ struct BenchDdsOptions {
   unsigned domain = 90;  // ddsperf uses domain + 1
   std::string json;
   std::string planner_report;  // the planner processes' reports, one per round (a JSON array)
+  std::string security_dir;    // --security: a secured planner run too, in every round
 };
 
 nlohmann::json summary_us(const rt::LatencyHistogram& h) {
@@ -109,10 +113,16 @@ struct PlannerSide {
 
 // The vehicle side of one round of the planner run, `seconds` long: a dd-vel robot starting at
 // rest at the start of "rooms".
-Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
+// With `secured`, both ends use the keys of --security.
+Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds, bool secured = false) {
   Scene scene = make_scene("rooms").value();
   link::VehicleLinkConfig config;
   config.domain = o.domain;
+  if (secured) {
+    auto security = security_files(o.security_dir, "vehicle");
+    if (!security) return security.error();
+    config.security = *security;
+  }
   config.vehicle = default_vehicle_params(VehicleKind::kDdVelocity);
   auto link = link::VehicleLink::create(config, scene.grid);
   if (!link) return link.error();
@@ -128,6 +138,10 @@ Result<PlannerSide> measure_planner(const BenchDdsOptions& o, int seconds) {
                                 std::to_string(seconds),
                                 "--startup-timeout",
                                 "30"};
+  if (secured) {
+    args.push_back("--security");
+    args.push_back(o.security_dir);
+  }
   const std::string report_path =
       "/tmp/grip-bench-dds-planner-" + std::to_string(getpid()) + ".json";
   args.push_back("--report");
@@ -330,6 +344,7 @@ int run_bench_dds(const BenchDdsOptions& o) {
     return 2;
   }
   PlannerSide ours;
+  PlannerSide secured;  // with --security
   DdsperfSide theirs;
   std::size_t payload = 0;
   unsigned rate_hz = 0;
@@ -352,6 +367,19 @@ int run_bench_dds(const BenchDdsOptions& o) {
       payload = static_cast<std::size_t>(planner->mean_plan_bytes());
       rate_hz = static_cast<unsigned>(
           std::max(1.0, std::round(static_cast<double>(planner->plans) / seconds)));
+    }
+    if (!o.security_dir.empty()) {
+      std::cerr << "grip bench dds: round " << round << " of " << o.rounds
+                << ": planner -> subscriber with DDS Security for " << seconds << " s ...\n";
+      auto with_security = measure_planner(o, seconds, /*secured=*/true);
+      if (!with_security) {
+        std::cerr << "grip bench dds: with DDS Security: " << with_security.error().message << "\n";
+        return 1;
+      }
+      std::printf("round %u: with DDS Security, plan delivery p99 %.1f us (%llu plans measured)\n",
+                  round, us(with_security->latency.percentile(0.99)),
+                  static_cast<unsigned long long>(with_security->latency.count()));
+      secured.add(*with_security);
     }
     std::cerr << "grip bench dds: round " << round << " of " << o.rounds << ": ddsperf ping-pong, "
               << payload << " bytes at " << rate_hz << " Hz, for " << seconds << " s ...\n";
@@ -396,6 +424,16 @@ int run_bench_dds(const BenchDdsOptions& o) {
       median(theirs.p50_us), median(theirs.p90_us), median(theirs.p99_us), their_p99,
       theirs.pooled_p99_rank(), *std::max_element(theirs.max_us.begin(), theirs.max_us.end()),
       o.rounds, our_p99 / their_p99);
+  if (!o.security_dir.empty()) {
+    std::printf(
+        "with DDS Security (%llu plans measured, rounds alternating with the run above), pooled:\n"
+        "  p50 %.1f us, p90 %.1f us, p99 %.1f us, max %.1f us\n"
+        "p99 ratio with / without DDS Security, same rounds: %.2f (target <= 1.5)\n",
+        static_cast<unsigned long long>(secured.latency.count()),
+        us(secured.latency.percentile(0.5)), us(secured.latency.percentile(0.9)),
+        us(secured.latency.percentile(0.99)), us(secured.latency.max()),
+        us(secured.latency.percentile(0.99)) / our_p99);
+  }
   // What the plans were for: a vehicle that follows them (the planner replans from where they
   // put it, not from scratch).
   std::uint64_t off_plans = 0;
@@ -437,6 +475,11 @@ int run_bench_dds(const BenchDdsOptions& o) {
                     {"p99_us_per_second", theirs.p99_us},
                     {"max_us_per_second", theirs.max_us}};
     j["p99_ratio"] = our_p99 / their_p99;
+    if (!o.security_dir.empty()) {
+      j["secured"] = summary_us(secured.latency);
+      j["secured"]["mean_plan_bytes"] = secured.mean_plan_bytes();
+      j["secured_p99_ratio"] = us(secured.latency.percentile(0.99)) / our_p99;
+    }
     j["duration_s"] = o.duration_s;
     j["rounds"] = o.rounds;
     if (!write_report("grip bench dds", o.json, std::move(j))) return 1;
@@ -464,6 +507,8 @@ void register_bench_dds_command(CLI::App& bench) {
   cmd->add_option("--json", o->json, "Write the figures as JSON here");
   cmd->add_option("--planner-report", o->planner_report,
                   "Write the planner process's reports here, one per round (allocations, misses)");
+  add_security_option(*cmd, o->security_dir,
+                      "none; with it, each round measures the planner side without and with it");
   cmd->callback([o]() {
     if (const int rc = run_bench_dds(*o); rc != 0) throw CLI::RuntimeError(rc);
   });

@@ -22,6 +22,7 @@ void register_render_command(CLI::App& app);    // figures from their reports
 void register_echo_command(CLI::App& app);      // a topic's samples as JSON lines
 void register_goal_command(CLI::App& app);      // a goal for the planner
 void register_params_command(CLI::App& app);    // a vehicle's parameter file, completed
+void register_keys_command(CLI::App& app);      // DDS Security keys (`grip keys init`)
 // Benchmarks registered on `bench` besides `paper`: `dds`, `explore`, and `ompl` (tools/ompl; a
 // stub there when built without OMPL).
 void register_bench_dds_command(CLI::App& bench);

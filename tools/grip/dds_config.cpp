@@ -44,11 +44,37 @@ CLI::Validator topic_prefix_validator() {
       "PREFIX");
 }
 
+Result<std::optional<platform::dds::SecurityFiles>> security_files(const std::string& directory,
+                                                                   const char* role) {
+  if (directory.empty()) return std::optional<platform::dds::SecurityFiles>();
+  platform::dds::SecurityFiles files =
+      platform::dds::SecurityFiles::from_directory(directory, role);
+  if (Status checked = files.check(); !checked) return checked.error();
+  return std::optional<platform::dds::SecurityFiles>(std::move(files));
+}
+
+void log_refused_peers(std::function<void(const std::string&)> warn) {
+  platform::dds::on_refused_by_security(
+      [warn = std::move(warn)](std::string_view line, std::uint64_t count) {
+        warn("DDS Security refused a peer (" + std::to_string(count) +
+             " refusals so far; the first 20 and every 100th are logged): " + std::string(line));
+      });
+}
+
+std::string unauthenticated_link_warning() {
+  return "THE LINK IS UNAUTHENTICATED AND UNENCRYPTED: any participant on this DDS domain can "
+         "read the plans and send this side plans, states, maps and goals. Give --security DIR "
+         "(or link.security_dir; grip keys init DIR makes the keys)";
+}
+
 Result<platform::dds::Participant> join_domain(std::uint32_t domain,
-                                               const std::string& dds_config_option) {
+                                               const std::string& dds_config_option,
+                                               const std::string& security_dir) {
   const Result<std::string> config = choose_dds_config(dds_config_option);
   if (!config) return config.error();
-  return platform::dds::Participant::create(domain, *config);
+  auto security = security_files(security_dir, "operator");
+  if (!security) return security.error();
+  return platform::dds::Participant::create(domain, *config, *security);
 }
 
 }  // namespace grip::tools

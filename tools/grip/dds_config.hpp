@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 
 #include "grip/common/result.hpp"
@@ -42,9 +44,35 @@ void add_topic_prefix_option(CLI::App& command, T& topic_prefix, const std::stri
       ->check(topic_prefix_validator());
 }
 
+// --security DIR: DDS Security with the keys of DIR (platform/dds/security.hpp, made by
+// `grip keys init`). Into a std::string or a std::optional<std::string>.
+template <typename T>
+void add_security_option(CLI::App& command, T& security_dir, const std::string& default_text) {
+  command.add_option("--security", security_dir,
+                     "DDS Security: authenticate, encrypt and keep to the permissions of the "
+                     "keys in DIR (grip keys init DIR makes them; DIR or its folder of this "
+                     "command's role; default: " +
+                         default_text + ")");
+}
+
+// The security files of `directory` for a command of `role` ("planner", "vehicle", "operator",
+// "explore": the subfolder taken when `directory` is the one `grip keys init` made), checked;
+// none for an empty `directory`. A missing or unreadable file is refused, named.
+Result<std::optional<platform::dds::SecurityFiles>> security_files(const std::string& directory,
+                                                                   const char* role);
+
+// Cyclone's refusals of peers (platform::dds::on_refused_by_security) as warnings through `warn`
+// (thread-safe), for a command whose link is secured.
+void log_refused_peers(std::function<void(const std::string&)> warn);
+
+// The start-up warning of a command whose link runs without DDS Security.
+std::string unauthenticated_link_warning();
+
 // A participant of an operator tool (`grip echo`, `grip goal`) on `domain`, with the
-// configuration chosen above; a bad option is an ErrorCode::kInvalidArgument.
+// configuration chosen above and the operator's keys of `security_dir` (empty: none); a bad
+// option is an ErrorCode::kInvalidArgument.
 Result<platform::dds::Participant> join_domain(std::uint32_t domain,
-                                               const std::string& dds_config_option);
+                                               const std::string& dds_config_option,
+                                               const std::string& security_dir = {});
 
 }  // namespace grip::tools

@@ -30,6 +30,7 @@ struct EchoOptions {
   std::uint32_t domain = 0;
   std::string dds_config;
   std::string topic_prefix;
+  std::string security_dir;
   std::uint64_t count = 0;  // 0: until Ctrl-C or the timeout
   double timeout_s = 0.0;   // 0: no timeout
 };
@@ -85,7 +86,7 @@ int run_echo(const EchoOptions& o) {
     std::cerr << "grip echo: " << topics.error().message << "\n";
     return 2;
   }
-  auto participant = join_domain(o.domain, o.dds_config);
+  auto participant = join_domain(o.domain, o.dds_config, o.security_dir);
   if (!participant) {
     std::cerr << "grip echo: " << participant.error().message << "\n";
     return participant.error().code == ErrorCode::kInvalidArgument ? 2 : 1;
@@ -135,6 +136,7 @@ void register_echo_command(CLI::App& app) {
                              link::kVehicleDescriptionTopic}));
   add_link_options(*cmd, o->domain, o->dds_config);
   add_topic_prefix_option(*cmd, o->topic_prefix, "none");
+  add_security_option(*cmd, o->security_dir, "none: unauthenticated");
   cmd->add_option("--count", o->count, "Exit after this many samples (0: no limit)")
       ->capture_default_str();
   cmd->add_option("--timeout", o->timeout_s,

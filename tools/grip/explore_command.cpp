@@ -308,6 +308,21 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     }
     overruns.emplace(std::move(watcher).value());
   }
+  // One process is one identity (platform/dds/security.hpp): grip explore takes the role
+  // allowed both sides.
+  auto security = security_files(p->link.security_dir, with_planner ? "explore" : "vehicle");
+  if (!security) {
+    std::cerr << command << ": " << security.error().message << "\n";
+    return 2;
+  }
+  if (*security) {
+    log_refused_peers([command](const std::string& line) {
+      std::cerr << command + std::string(": ") + line + "\n" << std::flush;
+    });
+  }
+  if (!with_planner && !*security) {
+    std::cerr << command << ": warning: " << unauthenticated_link_warning() << "\n";
+  }
   stop_on_signals();
 
   std::unique_ptr<rt::dds::PlannerParticipant> planner;
@@ -333,6 +348,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     if (trace) pc.on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
     pc.seed = o.seed;
     pc.startup_timeout = std::chrono::seconds(30);
+    pc.security = *security;
     auto created = rt::dds::PlannerParticipant::create(pc);
     if (!created) {
       std::cerr << command << ": " << created.error().message << "\n";
@@ -361,6 +377,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
   }
   sim::SimRunConfig config = sim_config(o, *p, *world);
   config.dds_config = link.dds_config;
+  config.security = *security;
   config.on_finished = [&] {
     sim_finished.store(true);
     if (planner) planner->request_stop();
@@ -427,6 +444,7 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
       ->check(CLI::Range(0.0, 0.5))
       ->capture_default_str();
   add_domain_option(*cmd, o.params);
+  add_security_option(*cmd, o.params);
   cmd->add_option("--report", o.report, "Write the JSON report here");
   cmd->add_option("--image", o.image, "Draw the run into this PNG");
 }

@@ -35,6 +35,7 @@ struct GoalOptions {
   std::uint32_t domain = 0;
   std::string dds_config;
   std::string topic_prefix;
+  std::string security_dir;
   double lease_ms = 500.0;
   double wait_s = 10.0;
   bool stay = false;
@@ -70,7 +71,7 @@ int run_goal(const GoalOptions& o) {
     std::cerr << "grip goal: " << topics.error().message << "\n";
     return 2;
   }
-  auto participant = join_domain(o.domain, o.dds_config);
+  auto participant = join_domain(o.domain, o.dds_config, o.security_dir);
   if (!participant) {
     std::cerr << "grip goal: " << participant.error().message << "\n";
     return participant.error().code == ErrorCode::kInvalidArgument ? 2 : 1;
@@ -128,6 +129,7 @@ void register_goal_command(CLI::App& app) {
       ->capture_default_str();
   add_link_options(*cmd, o->domain, o->dds_config);
   add_topic_prefix_option(*cmd, o->topic_prefix, "none");
+  add_security_option(*cmd, o->security_dir, "none: unauthenticated");
   cmd->add_option("--lease-ms", o->lease_ms,
                   "Liveliness lease [ms]: at most the planner's --lease-ms")
       ->check(CLI::Range(10.0, 3'600'000.0))

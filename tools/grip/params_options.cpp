@@ -23,6 +23,11 @@ void add_domain_option(CLI::App& command, ParamsOptions& o) {
   add_topic_prefix_option(command, o.topic_prefix, "the parameters' link.topic_prefix");
 }
 
+void add_security_option(CLI::App& command, ParamsOptions& o) {
+  add_security_option(command, o.security_dir,
+                      "the parameters' link.security_dir; none: unauthenticated");
+}
+
 void add_lockstep_options(CLI::App& command, ParamsOptions& o) {
   command
       .add_option("--lockstep-edges", o.lockstep_edges,
@@ -58,9 +63,10 @@ Result<params::GripParams> base_params(const ParamsOptions& o) {
   auto loaded = params::load_params(o.file);
   if (!loaded) return loaded.error();
   // A file the parameters name is found beside them, as with any configuration file.
-  std::string& dds_config = loaded->link.dds_config;
-  if (!dds_config.empty() && dds_config.front() != '/') {
-    dds_config = (std::filesystem::path(o.file).parent_path() / dds_config).string();
+  for (std::string* path : {&loaded->link.dds_config, &loaded->link.security_dir}) {
+    if (!path->empty() && path->front() != '/') {
+      *path = (std::filesystem::path(o.file).parent_path() / *path).string();
+    }
   }
   if (o.robot) {
     const std::string_view model = vehicle_name(vehicle_kind(loaded->vehicle));
@@ -106,6 +112,7 @@ Result<params::GripParams> effective_params(const ParamsOptions& o) {
   if (!p) return p.error();
   if (o.domain) p->link.domain = *o.domain;
   if (o.topic_prefix) p->link.topic_prefix = *o.topic_prefix;
+  if (o.security_dir) p->link.security_dir = *o.security_dir;
   if (o.period_ms) p->planner.cycle_s = *o.period_ms / 1e3;
   if (o.budget_ms) p->planner.budget_s = *o.budget_ms / 1e3;
   if (o.margin_ms) p->planner.margin_s = *o.margin_ms < 0.0 ? -1.0 : *o.margin_ms / 1e3;

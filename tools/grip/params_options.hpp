@@ -25,6 +25,7 @@ struct ParamsOptions {
   // Overrides; unset: the parameters' value.
   std::optional<unsigned> domain;
   std::optional<std::string> topic_prefix;
+  std::optional<std::string> security_dir;
   std::optional<double> period_ms;
   std::optional<double> budget_ms;
   std::optional<double> margin_ms;
@@ -39,6 +40,8 @@ struct ParamsOptions {
 void add_vehicle_options(CLI::App& command, ParamsOptions& o);
 // --domain and --topic-prefix: where the vehicle's topics are.
 void add_domain_option(CLI::App& command, ParamsOptions& o);
+// --security DIR: DDS Security (link.security_dir).
+void add_security_option(CLI::App& command, ParamsOptions& o);
 // --lockstep-edges and --no-safety.
 void add_lockstep_options(CLI::App& command, ParamsOptions& o);
 // --period-ms, --budget-ms, --margin-ms, --max-edges, --policy and --lease-ms.

@@ -62,6 +62,9 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o,
       choose_dds_config(o.dds_config.empty() ? p.link.dds_config : o.dds_config);
   if (!dds_config) return dds_config.error();
   config.dds_config = *dds_config;
+  auto security = security_files(p.link.security_dir, "planner");
+  if (!security) return security.error();
+  config.security = *security;
   config.seed = o.seed;
   config.duration_s = o.duration_s;
   config.startup_timeout =
@@ -140,6 +143,8 @@ int run_planner(const PlannerOptions& o) {
     log.error(overruns.error().message);
     return 2;
   }
+  if (!config->security) log.warning(unauthenticated_link_warning());
+  if (config->security) log_refused_peers([log](const std::string& line) { log.warning(line); });
   const bool tty = isatty(STDERR_FILENO) == 1;
   Service service(log);
   wire_service(*config, log, service);
@@ -165,6 +170,8 @@ int run_planner(const PlannerOptions& o) {
   log.info(robot + (o.params.file.empty() ? "" : " from " + o.params.file) + " on DDS domain " +
            std::to_string(config->domain) + " (" +
            (config->dds_config.empty() ? "loopback-only configuration" : config->dds_config) +
+           (config->security ? ", DDS Security with the keys in " + config->security->directory()
+                             : std::string(", unauthenticated")) +
            "); waiting for map, vehicle state and goal");
   service.check(service.notifier().status("waiting for map, vehicle state and goal"));
   auto report = (*planner)->run();
@@ -246,6 +253,7 @@ void register_planner_command(CLI::App& app) {
   add_vehicle_options(*cmd, o->params);
   add_domain_option(*cmd, o->params);
   add_dds_config_option(*cmd, o->dds_config);
+  add_security_option(*cmd, o->params);
   add_cycle_options(*cmd, o->params);
   add_lockstep_options(*cmd, o->params);
   cmd->add_option("--seed", o->seed, "Planner seed")->capture_default_str();

@@ -11,7 +11,7 @@ namespace pdds = platform::dds;
 Result<VehicleLink::Entities> VehicleLink::Entities::create(const VehicleLinkConfig& config) {
   auto topics = TopicNames::create(config.topic_prefix);
   if (!topics) return topics.error();
-  auto participant = pdds::Participant::create(config.domain, config.dds_config);
+  auto participant = pdds::Participant::create(config.domain, config.dds_config, config.security);
   if (!participant) return participant.error();
   const LinkTiming& timing = config.timing;
   auto description = publish_vehicle_description(*participant, *topics, timing, config.vehicle);

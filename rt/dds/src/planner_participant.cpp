@@ -58,7 +58,7 @@ struct Entities {
     timing.liveliness_lease = config.liveliness_lease;
     auto topics = link::TopicNames::create(config.topic_prefix);
     if (!topics) return topics.error();
-    auto participant = pdds::Participant::create(config.domain, config.dds_config);
+    auto participant = pdds::Participant::create(config.domain, config.dds_config, config.security);
     if (!participant) return participant.error();
     auto states = pdds::Reader<grip_msg_VehicleState>::create(
         *participant, &grip_msg_VehicleState_desc, topics->vehicle_state,

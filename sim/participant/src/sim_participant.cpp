@@ -42,6 +42,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   link::VehicleLinkConfig link_config;
   link_config.domain = config.domain;
   link_config.dds_config = config.dds_config;
+  link_config.security = config.security;
   link_config.topic_prefix = config.topic_prefix;
   link_config.vehicle = config.vehicle;  // described to the planner, which refuses another
   link_config.timing.cycle = std::chrono::nanoseconds(std::llround(config.cycle_s * 1e9));

@@ -161,6 +161,8 @@ constexpr auto kLink = std::to_array<Field>({
      "before every topic name, so that vehicles can share a domain; empty: none"},
     {"liveliness_lease_s", member<&G::link, &LinkParams::liveliness_lease_s>,
      "a side that gives no sign of life for this long counts as lost"},
+    {"security_dir", member<&G::link, &LinkParams::security_dir>,
+     "DDS Security keys (grip keys init); empty: unauthenticated, unencrypted"},
 });
 
 constexpr auto kRuntime = std::to_array<Field>({

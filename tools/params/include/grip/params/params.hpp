@@ -60,6 +60,9 @@ struct LinkParams {
   // Prepended to every topic name, so that two vehicles can share a domain; empty: none.
   std::string topic_prefix;
   double liveliness_lease_s = 0.5;
+  // A DDS Security folder (platform/dds/security.hpp, made by `grip keys init`); relative to the
+  // parameter file; empty: the link is neither authenticated nor encrypted.
+  std::string security_dir;
 
   bool operator==(const LinkParams&) const = default;
 };

@@ -11,11 +11,13 @@
 #include <dds/dds.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "grip/common/result.hpp"
 #include "grip/platform/dds/entity.hpp"
+#include "grip/platform/dds/security.hpp"
 
 namespace grip::platform::dds {
 
@@ -28,8 +30,11 @@ std::string_view loopback_config();
 class Participant {
  public:
   // `config` is Cyclone XML text (starting with '<') or a "file://" URI; empty means
-  // loopback_config(). domain must be < DDS_DOMAIN_DEFAULT.
-  static Result<Participant> create(DomainId domain, const std::string& config = {});
+  // loopback_config(). domain must be < DDS_DOMAIN_DEFAULT. With `security`, the participant
+  // authenticates with those files, and talks only to participants its governance and
+  // permissions allow (security.hpp); a file that cannot be read is refused, named.
+  static Result<Participant> create(DomainId domain, const std::string& config = {},
+                                    const std::optional<SecurityFiles>& security = std::nullopt);
 
   dds_entity_t get() const noexcept { return participant_.get(); }
   DomainId domain() const noexcept { return domain_id_; }

@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@ namespace grip::rt::dds {
 struct PlannerParticipantConfig {
   platform::dds::DomainId domain = 0;
   std::string dds_config;    // Cyclone XML or file:// URI; empty: the built-in loopback-only one
+  std::optional<platform::dds::SecurityFiles> security;  // DDS Security; none: unauthenticated
   std::string topic_prefix;  // empty: the topics' own names; checked by create()
   // What the planner plans with, checked by create(); the vehicle must describe itself the same.
   VehicleParams vehicle = CarParams{};
