@@ -17,6 +17,8 @@ packages=(
   stress-ng              # the load of `grip stress --load` (a built-in load is the fallback)
   libsystemd-dev         # sd_notify: readiness and watchdog of the grip-planner service
   util-linux             # setpriv: the scheduling tests drop capabilities with it
+  iproute2 iptables      # `grip bench faults`: network namespaces, a veth pair, loss and cuts
+  libnetfilter-queue-dev # `grip bench faults`: its delay (the kernel here has no netem)
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev  # optional: `grip bench ompl` (OMPL 1.5 links against these Boost libraries)
 )
 
