@@ -146,8 +146,6 @@ class FaultRun {
   }
 
   std::string report_path() const { return s_.stem + ".json"; }
-  // The simulator's clock, estimated: its start-up is counted as simulated time.
-  double sim_time_s() const { return seconds_since(sim_started_) * s_.time_scale; }
   double wall_since_sim_start() const { return seconds_since(sim_started_); }
   Child& sim() { return *sim_; }
   Child* planner() { return planner_ ? &*planner_ : nullptr; }
@@ -220,6 +218,12 @@ FaultRunOutcome run_fault_profile(const FaultRunSetup& s, const FaultProfile& p)
   const double wall_limit_s = s.fault_at_s + s.max_sim_time_s / s.time_scale + 120.0;
   bool faulted = false;
   bool fault_over = false;
+  // When the fault began and ended, on the wall clock; converted to the simulator's timeline
+  // from its end (its start-up is not simulated time).
+  // Seconds since `started`; < 0: not (yet).
+  double fault_began = -1.0;
+  double fault_ended = -1.0;
+  double sim_ended = -1.0;
   std::string error;
   for (;;) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -229,6 +233,7 @@ FaultRunOutcome run_fault_profile(const FaultRunSetup& s, const FaultProfile& p)
     }
     if (const int status = run.sim().poll(); status >= 0) {
       out.sim_exit_status = status;
+      sim_ended = seconds_since(started);
       break;
     }
     if (seconds_since(started) > wall_limit_s) {
@@ -238,7 +243,7 @@ FaultRunOutcome run_fault_profile(const FaultRunSetup& s, const FaultProfile& p)
     const double t = run.wall_since_sim_start();
     if (!faulted && t >= s.fault_at_s) {
       faulted = true;
-      out.fault_start_s = run.sim_time_s();
+      fault_began = seconds_since(started);
       Status st = Ok{};
       switch (p.kind) {
         case FaultKind::kLoss:
@@ -249,16 +254,15 @@ FaultRunOutcome run_fault_profile(const FaultRunSetup& s, const FaultProfile& p)
         case FaultKind::kPlannerRestart:
           run.kill_planner();
           st = run.start_planner();
-          out.fault_end_s = run.sim_time_s();
+          fault_ended = seconds_since(started);
           break;
         case FaultKind::kVehicleRestart:
           run.kill_sim();
           st = run.start_sim();
-          out.fault_start_s = 0.0;  // the new simulator's timeline
-          out.fault_end_s = 0.0;
+          fault_began = fault_ended = seconds_since(started);  // the new simulator's start
           break;
         case FaultKind::kNone:
-          out.fault_start_s.reset();
+          fault_began = -1.0;
           break;
       }
       if (!st) {
@@ -272,7 +276,7 @@ FaultRunOutcome run_fault_profile(const FaultRunSetup& s, const FaultProfile& p)
         error = st.error().message;
         break;
       }
-      out.fault_end_s = run.sim_time_s();
+      fault_ended = seconds_since(started);
     }
     if (Child* planner = run.planner(); planner != nullptr && planner->running()) {
       if (const int status = planner->poll(); status >= 0) {
@@ -285,6 +289,14 @@ FaultRunOutcome run_fault_profile(const FaultRunSetup& s, const FaultProfile& p)
   out.report = read_json(run.report_path());
   out.result = out.report.is_null() ? "no report" : out.report.value("result", "?");
   out.plans_lost = plans_lost(s, run.planner_starts(), run.vehicle_starts(), out.report);
+  if (!out.report.is_null() && sim_ended >= 0.0) {
+    const double end_s = out.report.value("sim_time_s", 0.0);
+    const auto on_sim_clock = [&](double t) {
+      return std::max(0.0, end_s - (sim_ended - t) * s.time_scale);
+    };
+    if (fault_began >= 0.0) out.fault_start_s = on_sim_clock(fault_began);
+    if (fault_ended >= 0.0) out.fault_end_s = on_sim_clock(fault_ended);
+  }
   if (!out.report.is_null() && out.fault_start_s && out.fault_end_s) {
     out.recovery_s =
         recovery_time(out.report.at("speed_profile"), out.report.value("max_speed_m_s", 0.0),

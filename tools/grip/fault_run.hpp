@@ -40,8 +40,8 @@ struct FaultRunOutcome {
   int sim_exit_status = -1;
   unsigned planner_starts = 0;
   unsigned vehicle_starts = 0;
-  // On the (last) simulator's timeline [s simulated], estimated from the wall clock; unset when
-  // the fault did not happen or does not end.
+  // On the (last) simulator's timeline [s simulated], from the wall clock counted back from its
+  // end; unset when the fault did not happen or does not end. A vehicle restart is at 0.
   std::optional<double> fault_start_s;
   std::optional<double> fault_end_s;
   std::optional<double> recovery_s;        // see recovery_time()
