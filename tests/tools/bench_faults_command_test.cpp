@@ -36,8 +36,8 @@ int processes_mentioning(const std::string& text) {
     const std::string pid = e.path().filename().string();
     if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
     std::ifstream in(e.path() / "cmdline");
-    const std::string cmdline((std::istreambuf_iterator<char>(in)),
-                              std::istreambuf_iterator<char>());
+    std::string cmdline;  // its arguments, NUL-separated: read whole
+    std::getline(in, cmdline, '\x01');
     count += cmdline.find(text) != std::string::npos ? 1 : 0;
   }
   return count;
