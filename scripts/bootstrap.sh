@@ -18,6 +18,8 @@ packages=(
   libsystemd-dev         # sd_notify: readiness and watchdog of the grip-planner service
   util-linux             # setpriv: the scheduling tests drop capabilities with it
   clang libclang-rt-14-dev  # scripts/fuzz.sh: the libFuzzer targets (tests/fuzz) and their runtime
+  iproute2 iptables      # `grip bench faults`: network namespaces, a veth pair, loss and cuts
+  libnetfilter-queue-dev # `grip bench faults`: its delay (the kernel here has no netem)
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev  # optional: `grip bench ompl` (OMPL 1.5 links against these Boost libraries)
 )
 

@@ -29,6 +29,7 @@
 #include "grip/sim/sim_participant.hpp"
 #include "report_file.hpp"
 #include "stats.hpp"
+#include "vehicle_arg.hpp"
 
 namespace grip::tools {
 
@@ -69,22 +70,13 @@ std::string world_label(const Run& r) {
   return r.is_map ? std::filesystem::path(r.world).filename().string() : r.world;
 }
 
-// A vehicle of --robots: a built-in one's name, or a parameter file.
-bool is_params_file(const std::string& robot) {
-  return robot.ends_with(".yaml") || robot.ends_with(".yml");
-}
-// Its name in the table, the reports' names and the JSON: a file's stem.
-std::string vehicle_label(const std::string& robot) {
-  return is_params_file(robot) ? std::filesystem::path(robot).stem().string() : robot;
-}
-
 std::vector<std::string> explore_args(const BenchExploreOptions& o, const Run& r,
                                       const std::string& self, std::optional<unsigned> domain) {
   std::vector<std::string> args{self,
                                 "explore",
                                 r.is_map ? "--map" : "--scene",
                                 r.world,
-                                is_params_file(r.robot) ? "--params" : "--robot",
+                                vehicle_args(r.robot)[0],
                                 r.robot,
                                 "--seed",
                                 std::to_string(r.seed),
@@ -260,9 +252,7 @@ int run_bench(const BenchExploreOptions& o) {
         r.seed = seed;
         std::string label = world_label(r);
         std::replace(label.begin(), label.end(), '.', '_');
-        const std::string vehicle =
-            is_params_file(robot) ? std::filesystem::path(robot).stem().string() : robot;
-        r.stem = label + "-" + vehicle + "-" + std::to_string(seed);
+        r.stem = label + "-" + vehicle_label(robot) + "-" + std::to_string(seed);
         runs.push_back(std::move(r));
       }
     }

@@ -62,11 +62,27 @@ class Child {
     int status = 0;
     waitpid(pid_, &status, 0);
     pid_ = 0;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return exit_status(status);
   }
+  // Its exit status if it has exited (then reaped), else -1; without waiting.
+  int poll() {
+    if (pid_ <= 0) return -1;
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) != pid_) return -1;
+    pid_ = 0;
+    return exit_status(status);
+  }
+  // Sends it `signal` (SIGTERM: asks it to stop and report; SIGKILL: a crash).
+  void send(int signal) const {
+    if (pid_ > 0) kill(pid_, signal);
+  }
+  bool running() const { return pid_ > 0; }
 
  private:
   explicit Child(pid_t pid) : pid_(pid) {}
+  static int exit_status(int status) {
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
   pid_t pid_;
 };
 

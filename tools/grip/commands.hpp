@@ -17,16 +17,18 @@ void register_plan_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_stress_command(CLI::App& app);
 void register_planner_command(CLI::App& app);
-void register_explore_commands(CLI::App& app);  // `grip explore` and `grip sim`
-void register_render_command(CLI::App& app);    // figures from their reports
-void register_echo_command(CLI::App& app);      // a topic's samples as JSON lines
-void register_goal_command(CLI::App& app);      // a goal for the planner
-void register_params_command(CLI::App& app);    // a vehicle's parameter file, completed
-void register_keys_command(CLI::App& app);      // DDS Security keys (`grip keys init`)
-// Benchmarks registered on `bench` besides `paper`: `dds`, `explore`, and `ompl` (tools/ompl; a
-// stub there when built without OMPL).
+void register_explore_commands(CLI::App& app);       // `grip explore` and `grip sim`
+void register_render_command(CLI::App& app);         // figures from their reports
+void register_echo_command(CLI::App& app);           // a topic's samples as JSON lines
+void register_goal_command(CLI::App& app);           // a goal for the planner
+void register_params_command(CLI::App& app);         // a vehicle's parameter file, completed
+void register_keys_command(CLI::App& app);           // DDS Security keys (`grip keys init`)
+void register_fault_delayer_command(CLI::App& app);  // hidden: the delay of `grip bench faults`
+// Benchmarks registered on `bench` besides `paper`: `dds`, `explore`, `faults`, and `ompl`
+// (tools/ompl; a stub there when built without OMPL).
 void register_bench_dds_command(CLI::App& bench);
 void register_bench_explore_command(CLI::App& bench);
+void register_bench_faults_command(CLI::App& bench);
 void register_bench_ompl_command(CLI::App& bench);
 
 }  // namespace grip::tools

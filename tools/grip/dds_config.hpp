@@ -3,7 +3,8 @@
 // uses (`grip planner`, `grip echo`, `grip goal`): the file given with --dds-config (for
 // `grip planner`, else its parameter file's link.dds_config), else the CYCLONEDDS_URI of the
 // environment, as Cyclone users expect, else the project's loopback-only configuration.
-// `grip explore`, `grip sim` and the benchmarks always stay on loopback.
+// `grip explore` and the benchmarks always stay on loopback, and `grip sim` unless given
+// --dds-config (`grip bench faults` runs it in a network namespace of its own).
 
 #include <CLI/CLI.hpp>
 #include <cstdint>

@@ -56,6 +56,7 @@ struct ExploreOptions {
   std::string image;
   std::string cycle_trace;    // grip explore: the planner's cycles, as CSV
   bool private_link = false;  // grip explore --private
+  std::string dds_config;     // grip sim: a Cyclone configuration of its own (else loopback)
 };
 
 struct World {
@@ -378,6 +379,14 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
   sim::SimRunConfig config = sim_config(o, *p, *world);
   config.dds_config = link.dds_config;
   config.security = *security;
+  if (!o.dds_config.empty()) {
+    auto dds_config = choose_dds_config(o.dds_config);
+    if (!dds_config) {
+      std::cerr << command << ": " << dds_config.error().message << "\n";
+      return 2;
+    }
+    config.dds_config = *dds_config;
+  }
   config.on_finished = [&] {
     sim_finished.store(true);
     if (planner) planner->request_stop();
@@ -473,6 +482,8 @@ void register_explore_commands(CLI::App& app) {
   CLI::App* s = app.add_subcommand(
       "sim", "The simulator alone, standing in for the vehicle of a `grip planner` elsewhere");
   add_common_options(s, *sim_options);
+  s->add_option("--dds-config", sim_options->dds_config,
+                "Cyclone DDS XML configuration file (default: the built-in loopback-only one)");
   s->callback([sim_options]() {
     if (const int rc = run_explore(*sim_options, false); rc != 0) throw CLI::RuntimeError(rc);
   });

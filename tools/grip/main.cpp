@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   grip::tools::register_goal_command(app);
   grip::tools::register_params_command(app);
   grip::tools::register_keys_command(app);
+  grip::tools::register_fault_delayer_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
