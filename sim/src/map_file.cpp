@@ -50,7 +50,7 @@ Result<std::string> read_file(const std::string& path, const std::string& what) 
   std::string text;
   char chunk[1 << 16];
   while (in) {
-    in.read(chunk, sizeof chunk);
+    in.read(chunk, static_cast<std::streamsize>(sizeof chunk));
     const auto got = static_cast<std::size_t>(in.gcount());
     if (text.size() + got > kMaxMapFileBytes) return too_large();
     text.append(chunk, got);

@@ -195,7 +195,9 @@ TEST(ChooseStartTest, AnExtremeResolutionIsRefusedOrHandledNeverACrash) {
         EXPECT_TRUE(contains(start.error().message, "extreme.map")) << start.error().message;
       }
       const Status s = check_start(map, footprint, 0.05, StartPose{1.0, 1.0, 0.3});
-      if (!s) EXPECT_TRUE(contains(s.error().message, "extreme.map")) << s.error().message;
+      if (!s) {
+        EXPECT_TRUE(contains(s.error().message, "extreme.map")) << s.error().message;
+      }
     }
   }
 }
