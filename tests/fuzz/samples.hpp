@@ -34,6 +34,8 @@ inline grip_msg_VehicleState vehicle_state_from(FuzzBytes& in) {
   m.lockstep = in.take_bool();
   m.plan_cycle = in.take<std::uint64_t>();
   m.map_sequence = in.take<std::uint64_t>();
+  m.incarnation = in.take<std::uint64_t>();
+  m.plan_incarnation = in.take<std::uint64_t>();
   return m;
 }
 
@@ -75,6 +77,7 @@ inline grip_msg_MapUpdate map_update_from(FuzzBytes& in, std::vector<std::uint8_
   m.cells._length = static_cast<std::uint32_t>(wanted);
   m.cells._maximum = m.cells._length;
   m.cells._buffer = cells.empty() ? nullptr : cells.data();
+  m.incarnation = in.take<std::uint64_t>();
   return m;
 }
 
@@ -99,6 +102,8 @@ inline grip_msg_Plan plan_from(FuzzBytes& in, std::vector<grip_msg_PlanStep>& st
   m.steps._length = static_cast<std::uint32_t>(count);
   m.steps._maximum = m.steps._length;
   m.steps._buffer = steps.empty() ? nullptr : steps.data();
+  m.incarnation = in.take<std::uint64_t>();
+  m.vehicle_incarnation = in.take<std::uint64_t>();
   return m;
 }
 
@@ -129,6 +134,9 @@ inline grip_msg_PlannerStatus planner_status_from(FuzzBytes& in) {
   m.frontier_groups_given_up = in.take<std::uint32_t>();
   m.target_x_m = in.take<double>();
   m.target_y_m = in.take<double>();
+  m.incarnation = in.take<std::uint64_t>();
+  m.vehicle_incarnation = in.take<std::uint64_t>();
+  m.vehicle_restarts = in.take<std::uint32_t>();
   return m;
 }
 
