@@ -256,6 +256,10 @@ TEST_F(DdsSecurity, AnUnauthenticatedInjectorChangesNothingInASecuredExploration
   EXPECT_GT(count_of(injected, "grip_plan"), 0) << injected.output;
   const ProcessRun heard = eavesdropper.get();
   EXPECT_EQ(count_of(heard, "grip_plan"), 0) << heard.output;
+  // The attempts are in the planner's log.
+  const ProcessRun logged =
+      run("grep -c 'DDS Security refused a peer' " + (dir_ / "planner.log").string());
+  EXPECT_NE(logged.output, "0\n") << logged.output;
 }
 
 }  // namespace
