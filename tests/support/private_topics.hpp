@@ -26,12 +26,19 @@ inline std::string make_private_topic_prefix() {
   // "t<pid>_<random>": the parent's, when it made the one in our environment.
   if (const char* inherited = std::getenv(kVariable); inherited != nullptr) {
     const std::string value = inherited;
-    if (value.starts_with("t" + std::to_string(getppid()) + "_")) return value;
+    // Appended, not "t" + string&&: GCC 12 at -O3 warns falsely on that (-Werror=restrict).
+    std::string parents = "t";
+    parents += std::to_string(getppid());
+    parents += "_";
+    if (value.starts_with(parents)) return value;
   }
   std::random_device entropy;
   char random_hex[9];
   std::snprintf(random_hex, sizeof random_hex, "%08x", static_cast<unsigned>(entropy()));
-  std::string prefix = "t" + std::to_string(getpid()) + "_" + random_hex;
+  std::string prefix = "t";
+  prefix += std::to_string(getpid());
+  prefix += "_";
+  prefix += random_hex;
   setenv(kVariable, prefix.c_str(), 1);
   return prefix;
 }
