@@ -233,14 +233,7 @@ int run_bench(const BenchFaultsOptions& o) {
     nlohmann::json runs = nlohmann::json::array();
     for (std::size_t i = 0; i < rows.size(); ++i) runs.push_back(run_json(rows[i], reports[i]));
     j["runs"] = runs;
-    // Written beside and renamed: a reader never sees half a report.
-    const std::string partial = o.json + ".partial";
-    if (!write_report(command, partial, std::move(j), 1)) return 1;
-    std::filesystem::rename(partial, o.json, ec);
-    if (ec) {
-      std::cerr << command << ": cannot write '" << o.json << "': " << ec.message() << "\n";
-      return 1;
-    }
+    if (!write_report(command, o.json, std::move(j), 1)) return 1;  // whole or not at all
   }
   return stop_flag().load() ? 130 : 0;
 }

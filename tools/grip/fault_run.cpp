@@ -18,6 +18,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// recovery_time(): a rest at least this long (a turn in place is shorter), beginning at most this
+// long after the fault's end [s simulated].
+constexpr double kMinRest_s = 0.5;
+constexpr double kRestWindow_s = 10.0;
+
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -182,18 +187,23 @@ std::optional<std::int64_t> plans_lost(const FaultRunSetup& s, unsigned planner_
 std::optional<double> recovery_time(const nlohmann::json& speed_profile, double top_speed_m_s,
                                     double fault_start_s, double fault_end_s) {
   const double moving = 0.05 * top_speed_m_s;
-  std::optional<double> stopped;
+  double rest_began = -1.0;  // of the current rest; < 0: moving
   for (const auto& sample : speed_profile) {
     const double t = sample[0].get<double>();
     const double v = sample[1].get<double>();
-    if (!stopped) {
-      if (t > fault_end_s + 10.0) return 0.0;
-      if (t >= fault_start_s && v < moving) stopped = t;
-    } else if (v >= moving) {
+    if (v < moving) {
+      if (rest_began < 0.0) rest_began = t;
+      continue;
+    }
+    // Moving at t. A rest long enough not to be a turn in place, ending after the fault began:
+    // the one the fault caused.
+    if (rest_began >= 0.0 && t - rest_began >= kMinRest_s && t > fault_start_s) {
       return std::max(0.0, t - fault_end_s);
     }
+    rest_began = -1.0;
+    if (t > fault_end_s + kRestWindow_s) return 0.0;
   }
-  return stopped ? std::nullopt : std::optional<double>(0.0);
+  return rest_began >= 0.0 ? std::nullopt : std::optional<double>(0.0);
 }
 
 FaultRunOutcome run_fault_profile(const FaultRunSetup& s, const FaultProfile& p) {

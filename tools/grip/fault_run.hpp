@@ -56,9 +56,10 @@ struct FaultRunOutcome {
 
 FaultRunOutcome run_fault_profile(const FaultRunSetup& setup, const FaultProfile& profile);
 
-// Simulated seconds from the fault's end until the vehicle, having come to rest (below 5% of its
-// top speed) after the fault began, moves again; 0 when it did not stop within 10 s of the end;
-// unset when it never moved again. `speed_profile` is the report's [[t, |v|], ...].
+// Simulated seconds from the fault's end until the vehicle moves again after the rest the fault
+// caused: the first rest (below 5% of top speed for at least 0.5 s; a turn in place is shorter)
+// that ends after the fault began; 0 when it did not rest within 10 s of the fault's end; unset
+// when it never moved again. `speed_profile` is the report's [[t, |v|], ...].
 std::optional<double> recovery_time(const nlohmann::json& speed_profile, double top_speed_m_s,
                                     double fault_start_s, double fault_end_s);
 
