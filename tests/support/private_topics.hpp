@@ -26,13 +26,15 @@ inline std::string make_private_topic_prefix() {
   // "t<pid>_<random>": the parent's, when it made the one in our environment.
   if (const char* inherited = std::getenv(kVariable); inherited != nullptr) {
     const std::string value = inherited;
-    if (value.starts_with("t" + std::to_string(getppid()) + "_")) return value;
+    char parent[32];
+    std::snprintf(parent, sizeof parent, "t%ld_", static_cast<long>(getppid()));
+    if (value.starts_with(parent)) return value;
   }
   std::random_device entropy;
-  char random_hex[9];
-  std::snprintf(random_hex, sizeof random_hex, "%08x", static_cast<unsigned>(entropy()));
-  std::string prefix = "t" + std::to_string(getpid()) + "_" + random_hex;
-  setenv(kVariable, prefix.c_str(), 1);
+  char prefix[48];
+  std::snprintf(prefix, sizeof prefix, "t%ld_%08x", static_cast<long>(getpid()),
+                static_cast<unsigned>(entropy()));
+  setenv(kVariable, prefix, 1);
   return prefix;
 }
 

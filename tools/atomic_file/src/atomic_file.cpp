@@ -24,11 +24,11 @@ std::string directory_of(const std::string& path) {
 
 Result<AtomicFile> AtomicFile::create(const std::string& path) {
   if (path.empty()) return io_error("cannot write a file without a name");
-  const std::filesystem::path target(path);
-  std::string temporary =
-      (std::filesystem::path(directory_of(path)) / ("." + target.filename().string() + ".tmp-"))
-          .string() +
-      "XXXXXX";
+  // ".<name>.tmp-XXXXXX" in the same directory: rename(2) stays within one file system.
+  std::string temporary = directory_of(path);
+  temporary.append("/.");
+  temporary.append(std::filesystem::path(path).filename().string());
+  temporary.append(".tmp-XXXXXX");
   const int fd = mkstemp(temporary.data());
   if (fd < 0) return io_error("cannot write '" + path + "': " + std::strerror(errno));
   // mkstemp makes it 0600; a report is as readable as any file the user creates.
