@@ -356,7 +356,8 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
       return 2;
     }
     planner = std::move(created).value();
-    auto watching = LinkWatch::start(p->link.domain, link.dds_config, p->link.topic_prefix);
+    auto watching =
+        LinkWatch::start(p->link.domain, link.dds_config, p->link.topic_prefix, *security);
     if (!watching) {
       std::cerr << command << ": " << watching.error().message << "\n";
       return 2;

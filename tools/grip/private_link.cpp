@@ -89,10 +89,11 @@ dds_entity_t create_watch_reader(dds_entity_t participant, dds_entity_t topic,
 }  // namespace
 
 Result<LinkWatch> LinkWatch::start(pdds::DomainId domain, const std::string& dds_config,
-                                   const std::string& topic_prefix) {
+                                   const std::string& topic_prefix,
+                                   const std::optional<pdds::SecurityFiles>& security) {
   auto names = link::TopicNames::create(topic_prefix);
   if (!names) return names.error();
-  auto participant = pdds::Participant::create(domain, dds_config);
+  auto participant = pdds::Participant::create(domain, dds_config, security);
   if (!participant) return participant.error();
   LinkWatch watch(std::move(participant).value());
   for (const ContractTopic& topic : kContractTopics) {

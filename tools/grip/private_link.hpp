@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,8 +49,12 @@ class LinkWatch {
  public:
   // Joins `domain` (configured by `dds_config` if this process has not yet) and opens a reader
   // on each contract topic under `topic_prefix`, each ignoring this process's writers.
-  static Result<LinkWatch> start(platform::dds::DomainId domain, const std::string& dds_config,
-                                 const std::string& topic_prefix);
+  // With `security`, as the run's own participants (an unauthenticated watch would match no
+  // secured writer).
+  static Result<LinkWatch> start(
+      platform::dds::DomainId domain, const std::string& dds_config,
+      const std::string& topic_prefix,
+      const std::optional<platform::dds::SecurityFiles>& security = std::nullopt);
 
   // Writers of other processes matched since start(), by topic name (a topic none matched is
   // listed with 0).
