@@ -26,22 +26,6 @@ inline std::string make_private_topic_prefix() {
   // "t<pid>_<random>": the parent's, when it made the one in our environment.
   if (const char* inherited = std::getenv(kVariable); inherited != nullptr) {
     const std::string value = inherited;
-<<<<<<< HEAD
-    // Appended, not "t" + string&&: GCC 12 at -O3 warns falsely on that (-Werror=restrict).
-    std::string parents = "t";
-    parents += std::to_string(getppid());
-    parents += "_";
-    if (value.starts_with(parents)) return value;
-  }
-  std::random_device entropy;
-  char random_hex[9];
-  std::snprintf(random_hex, sizeof random_hex, "%08x", static_cast<unsigned>(entropy()));
-  std::string prefix = "t";
-  prefix += std::to_string(getpid());
-  prefix += "_";
-  prefix += random_hex;
-  setenv(kVariable, prefix.c_str(), 1);
-=======
     char parent[32];
     std::snprintf(parent, sizeof parent, "t%ld_", static_cast<long>(getppid()));
     if (value.starts_with(parent)) return value;
@@ -51,7 +35,6 @@ inline std::string make_private_topic_prefix() {
   std::snprintf(prefix, sizeof prefix, "t%ld_%08x", static_cast<long>(getpid()),
                 static_cast<unsigned>(entropy()));
   setenv(kVariable, prefix, 1);
->>>>>>> isolation
   return prefix;
 }
 

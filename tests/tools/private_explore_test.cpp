@@ -99,7 +99,7 @@ TEST(PrivateExplore, RunsGivenADomainAreSharedUnlessPrivate) {
                    common + " --private --report " + dir + "/c.json"});
   nlohmann::json links[3];
   const char* names[] = {"a", "b", "c"};
-  for (int i = 0; i < 3; ++i) {
+  for (std::size_t i = 0; i < 3; ++i) {
     ASSERT_TRUE(std::filesystem::exists(dir + "/" + names[i] + ".json")) << runs[i].output;
     links[i] = read_json(dir + "/" + names[i] + ".json").at("link");
     EXPECT_EQ(links[i].at("domain").get<int>(), 200) << links[i].dump();
