@@ -73,7 +73,7 @@ GripParams all_changed(VehicleKind kind) {
   p.exploration.give_up_s = 42.5;
   p.exploration.target_refresh_cycles = 2;
   p.exploration.stuck_after_s = 123.4;
-  p.link = {232, "/etc/grip/lab \"north\" \\ cyclone.xml", "robot_7", 0.25};
+  p.link = {232, "/etc/grip/lab \"north\" \\ cyclone.xml", "robot_7", 0.25, "/etc/grip/security"};
   p.runtime = {grip::platform::PolicyRequest::kFifo, 42, 1, false};
   return p;
 }
