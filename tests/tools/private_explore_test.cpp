@@ -83,8 +83,8 @@ TEST(PrivateExplore, TwoDefaultRunsAtOnceBothCompleteAndNeitherReceivesASampleOf
     files.push_back(entry.path().filename().string());
   }
   std::sort(files.begin(), files.end());
-  const std::vector<std::string> expected = {"dd-accel.csv", "dd-accel.json", "dd-accel.png",
-                                             "dd-vel.csv",   "dd-vel.json",   "dd-vel.png"};
+  const std::vector<std::string> expected = {"first.csv",  "first.json",  "first.png",
+                                             "second.csv", "second.json", "second.png"};
   EXPECT_EQ(files, expected);
 }
 

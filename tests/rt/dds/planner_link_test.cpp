@@ -165,6 +165,7 @@ TEST(UnusableGeometry, AMapThePlannerCannotPlanOnIsRejectedAndCountedAndThePlann
     // Contract-valid, but 5 m cells: coarser than the frontier's approach range.
     link::VehicleLinkConfig link_config;
     link_config.domain = kDomain;
+    link_config.topic_prefix = ::grip::testing::private_topic_prefix();
     link_config.vehicle = default_vehicle_params(VehicleKind::kDdVelocity);
     OccupancyGrid coarse = OccupancyGrid::create(20, 20, 5.0, 0.0, 0.0, Cell::kFree).value();
     auto link = link::VehicleLink::create(link_config, std::move(coarse)).value();

@@ -60,6 +60,7 @@ sim::SimRunConfig lockstep_sim(platform::dds::DomainId domain, const VehiclePara
                                const Room& room) {
   sim::SimRunConfig config;
   config.domain = domain;
+  config.topic_prefix = ::grip::testing::private_topic_prefix();
   config.vehicle = vehicle;
   config.world = "small room";
   config.start_x_m = room.start.x_m;
