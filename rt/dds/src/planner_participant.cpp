@@ -141,9 +141,9 @@ class PlannerParticipantFor final : public PlannerParticipant {
             vehicle, config.vehicle,
             {dds_.states, dds_.maps, dds_.goals, dds_.descriptions, dds_.requests, dds_.waitset},
             handoffs_, wakeups_.lockstep_inputs, config.max_map_cells,
-            config.liveliness_lease.count(), config.on_warning),
-        publish_(V::kKind, link::new_incarnation(), {dds_.plans, dds_.status}, handoffs_,
-                 wakeups_.publish, receive_.counters(), receive_.clock()),
+            config.liveliness_lease.count(), incarnation_, config.on_warning),
+        publish_(V::kKind, incarnation_, {dds_.plans, dds_.status}, handoffs_, wakeups_.publish,
+                 receive_.counters(), receive_.clock()),
         planning_(new_planning_side()),
         alive_(config.on_alive ? config.alive_interval.count() : 0) {}
   ~PlannerParticipantFor() override;
@@ -194,6 +194,7 @@ class PlannerParticipantFor final : public PlannerParticipant {
   Handoffs handoffs_;
   std::atomic<bool> threads_stop_{false};
   V vehicle_;
+  const std::uint64_t incarnation_ = link::new_incarnation();  // stamped on plans and status
   ReceiveSide<V> receive_;
   PublishSide publish_;
   std::unique_ptr<PlanningSide<V>> planning_;

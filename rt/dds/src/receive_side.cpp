@@ -28,6 +28,7 @@ template <VehicleModel V>
 ReceiveSide<V>::ReceiveSide(const V& vehicle, const VehicleParams& params, ReceiveEntities entities,
                             Handoffs& handoffs, platform::Wakeup& lockstep_inputs,
                             std::uint32_t max_map_cells, std::int64_t takeover_ns,
+                            std::uint64_t planner_incarnation,
                             std::function<void(const std::string&)> warn)
     : vehicle_(vehicle),
       dds_(entities),
@@ -37,6 +38,7 @@ ReceiveSide<V>::ReceiveSide(const V& vehicle, const VehicleParams& params, Recei
       max_map_cells_(max_map_cells),
       receiver_(max_map_cells),
       vehicle_incarnation_(takeover_ns),
+      planner_incarnation_(planner_incarnation),
       description_(params) {}
 
 template <VehicleModel V>
@@ -127,8 +129,13 @@ void ReceiveSide<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& b
     for (std::size_t i = 0; i < *taken; ++i) {
       const grip_msg_VehicleState& msg = buffer[i];
       // A lockstep simulator repeats the state it waits on (for a planner that joins late):
-      // a repeat is neither new nor an error.
+      // a repeat is neither new nor an error. Planned for again only by a standby (the vehicle
+      // follows another planner): its earlier answer was refused, and once the followed one
+      // has gone silent, an answer to the repeat is what the vehicle fails over to.
       if (msg.stamp_ns == last_state_stamp_ && msg.sequence_number == last_state_sequence_) {
+        const bool standby =
+            msg.plan_incarnation != 0 && msg.plan_incarnation != planner_incarnation_;
+        if (standby) hand_over_state(msg);
         continue;
       }
       const std::int64_t now = platform::now_ns();
@@ -149,18 +156,23 @@ void ReceiveSide<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& b
       last_state_local_ns_ = now;
       lockstep_seen_ = msg.lockstep;
       clock_.observe(msg.stamp_ns, now, msg.time_scale);
-      VehicleSample& sample = handoffs_.states->write_buffer();
-      std::copy(std::begin(msg.state), std::end(msg.state), sample.state.begin());
-      sample.stamp_ns = msg.stamp_ns;
-      sample.sequence_number = msg.sequence_number;
-      sample.plan_cycle = msg.plan_cycle;
-      sample.map_sequence = msg.map_sequence;
-      sample.time_scale = msg.time_scale;
-      sample.lockstep = msg.lockstep;
-      sample.incarnation = msg.incarnation;
-      handoffs_.states->publish();
+      hand_over_state(msg);
     }
   }
+}
+
+template <VehicleModel V>
+void ReceiveSide<V>::hand_over_state(const grip_msg_VehicleState& msg) {
+  VehicleSample& sample = handoffs_.states->write_buffer();
+  std::copy(std::begin(msg.state), std::end(msg.state), sample.state.begin());
+  sample.stamp_ns = msg.stamp_ns;
+  sample.sequence_number = msg.sequence_number;
+  sample.plan_cycle = msg.plan_cycle;
+  sample.map_sequence = msg.map_sequence;
+  sample.time_scale = msg.time_scale;
+  sample.lockstep = msg.lockstep;
+  sample.incarnation = msg.incarnation;
+  handoffs_.states->publish();
 }
 
 template <VehicleModel V>

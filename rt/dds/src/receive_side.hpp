@@ -70,7 +70,8 @@ class ReceiveSide {
   // this long (the liveliness lease).
   ReceiveSide(const V& vehicle, const VehicleParams& params, ReceiveEntities entities,
               Handoffs& handoffs, platform::Wakeup& lockstep_inputs, std::uint32_t max_map_cells,
-              std::int64_t takeover_ns, std::function<void(const std::string&)> warn);
+              std::int64_t takeover_ns, std::uint64_t planner_incarnation,
+              std::function<void(const std::string&)> warn);
 
   // The receive thread's body: until `stop_threads`. `stopping` (planning was told to stop)
   // makes a vehicle that leaves the end of the run rather than a loss.
@@ -91,6 +92,7 @@ class ReceiveSide {
 
  private:
   void take_states(platform::dds::SampleBuffer<grip_msg_VehicleState, 8>& buffer);
+  void hand_over_state(const grip_msg_VehicleState& msg);  // to the planning thread
   void take_maps(platform::dds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer);
   void take_goals(platform::dds::SampleBuffer<grip_msg_Goal, 4>& buffer);
   void take_descriptions(platform::dds::SampleBuffer<grip_msg_VehicleDescription, 2>& buffer);
@@ -120,6 +122,7 @@ class ReceiveSide {
   int tiles_x_ = 0;
   int tiles_y_ = 0;
   link::IncarnationTracker vehicle_incarnation_;
+  std::uint64_t planner_incarnation_;  // this planner's, as the vehicle names the one it follows
   std::uint64_t last_state_stamp_ = 0;
   std::uint64_t last_state_sequence_ = 0;
   std::int64_t last_state_local_ns_ = 0;       // when the last state was accepted
