@@ -89,8 +89,8 @@ class PlanningSide {
   std::optional<ExplorationDriver<V>> driver_;  // created at start-up: a goal may never come
   // driver_ exists: published by prepare() to the target thread, which polls from the start.
   std::atomic<bool> driver_ready_{false};
-  bool exploring_ = false;                      // no goal was given (yet)
-  double heading_x_m_ = 0.0;                    // the goal, or the frontier target
+  bool exploring_ = false;    // no goal was given (yet)
+  double heading_x_m_ = 0.0;  // the goal, or the frontier target
   double heading_y_m_ = 0.0;
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
   std::uint64_t map_sequence_ = 0;  // the last update applied

@@ -40,7 +40,8 @@ class HandPlanner {
         control_(control),
         done_from_(done_from),
         participant_(pdds::Participant::create(domain).value()) {
-    const link::TopicNames topics = link::TopicNames::create(::grip::testing::private_topic_prefix()).value();
+    const link::TopicNames topics =
+        link::TopicNames::create(::grip::testing::private_topic_prefix()).value();
     const link::LinkTiming timing;
     states_.emplace(pdds::Reader<grip_msg_VehicleState>::create(
                         participant_, &grip_msg_VehicleState_desc, topics.vehicle_state,

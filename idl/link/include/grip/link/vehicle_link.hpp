@@ -38,7 +38,7 @@ namespace grip::link {
 
 struct VehicleLinkConfig {
   platform::dds::DomainId domain = 0;
-  std::string dds_config;    // empty: the built-in loopback-only configuration
+  std::string dds_config;  // empty: the built-in loopback-only configuration
   std::optional<platform::dds::SecurityFiles> security;  // DDS Security; none: unauthenticated
   std::string topic_prefix;  // empty: the topics' own names (topics.hpp)
   // The vehicle: described once at creation (vehicle_description.hpp); plans of another kind

@@ -46,7 +46,7 @@ inline constexpr double kNeverMovedM = 0.01;
 
 struct SimRunConfig {
   platform::dds::DomainId domain = 0;
-  std::string dds_config;    // empty: the built-in loopback-only configuration
+  std::string dds_config;  // empty: the built-in loopback-only configuration
   std::optional<platform::dds::SecurityFiles> security;  // DDS Security; none: unauthenticated
   std::string topic_prefix;  // empty: the topics' own names (link/topics.hpp)
   // The vehicle simulated: its limits bound the plans it executes, its footprint the collisions,

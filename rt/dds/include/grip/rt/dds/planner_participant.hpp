@@ -51,7 +51,7 @@ namespace grip::rt::dds {
 
 struct PlannerParticipantConfig {
   platform::dds::DomainId domain = 0;
-  std::string dds_config;    // Cyclone XML or file:// URI; empty: the built-in loopback-only one
+  std::string dds_config;  // Cyclone XML or file:// URI; empty: the built-in loopback-only one
   std::optional<platform::dds::SecurityFiles> security;  // DDS Security; none: unauthenticated
   std::string topic_prefix;  // empty: the topics' own names; checked by create()
   // What the planner plans with, checked by create(); the vehicle must describe itself the same.
