@@ -122,34 +122,32 @@ std::vector<std::string> topic_expressions(const char* base, const std::string& 
   return {base, std::string("*_") + base};
 }
 
+// One governance rule: every sample of the topics `expression` matches encrypted, and only
+// participants with the permission may discover, read or write them.
+std::string topic_rule(const std::string& expression) {
+  return "        <topic_rule>\n          <topic_expression>" + expression +
+         "</topic_expression>\n"
+         "          <enable_discovery_protection>true</enable_discovery_protection>\n"
+         "          <enable_liveliness_protection>true</enable_liveliness_protection>\n"
+         "          <enable_read_access_control>true</enable_read_access_control>\n"
+         "          <enable_write_access_control>true</enable_write_access_control>\n"
+         "          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>\n"
+         "          <data_protection_kind>ENCRYPT</data_protection_kind>\n"
+         "        </topic_rule>\n";
+}
+
 std::string governance_xml(const KeysOptions& o) {
   std::string topics;
   for (const char* base :
        {link::kVehicleStateTopic, link::kPlanTopic, link::kMapUpdateTopic, link::kMapRequestTopic,
         link::kGoalTopic, link::kPlannerStatusTopic, link::kVehicleDescriptionTopic}) {
     for (const std::string& expression : topic_expressions(base, o.topic_prefix)) {
-      topics += "        <topic_rule>\n          <topic_expression>" + expression +
-                "</topic_expression>\n"
-                "          <enable_discovery_protection>true</enable_discovery_protection>\n"
-                "          <enable_liveliness_protection>true</enable_liveliness_protection>\n"
-                "          <enable_read_access_control>true</enable_read_access_control>\n"
-                "          <enable_write_access_control>true</enable_write_access_control>\n"
-                "          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>\n"
-                "          <data_protection_kind>ENCRYPT</data_protection_kind>\n"
-                "        </topic_rule>\n";
+      topics += topic_rule(expression);
     }
   }
   // Any other topic: nobody may use it (read and write access controlled, and no permission
   // grants it).
-  topics +=
-      "        <topic_rule>\n          <topic_expression>*</topic_expression>\n"
-      "          <enable_discovery_protection>true</enable_discovery_protection>\n"
-      "          <enable_liveliness_protection>true</enable_liveliness_protection>\n"
-      "          <enable_read_access_control>true</enable_read_access_control>\n"
-      "          <enable_write_access_control>true</enable_write_access_control>\n"
-      "          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>\n"
-      "          <data_protection_kind>ENCRYPT</data_protection_kind>\n"
-      "        </topic_rule>\n";
+  topics += topic_rule("*");
   return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
          "<!-- grip's DDS Security governance, made by grip keys init -->\n"
          "<dds xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
