@@ -29,15 +29,18 @@ bool stamp_lead_allowed(std::uint64_t stamp_ns, std::uint64_t last_stamp_ns,
   return lead <= allowed;
 }
 
-Peer IncarnationTracker::classify(std::uint64_t incarnation, std::int64_t now_ns) const noexcept {
+Peer IncarnationTracker::classify(std::uint64_t incarnation, std::int64_t now_ns,
+                                  bool followed_alive) const noexcept {
   if (incarnation == 0) return Peer::kNone;
   if (followed_ == 0) return Peer::kNew;
   if (incarnation == followed_) return Peer::kSame;
-  return now_ns - last_heard_ns_ >= takeover_ns_ ? Peer::kNew : Peer::kOther;
+  const std::int64_t silence = now_ns - last_heard_ns_;
+  return silence >= (followed_alive ? hung_ns_ : takeover_ns_) ? Peer::kNew : Peer::kOther;
 }
 
-Peer IncarnationTracker::observe(std::uint64_t incarnation, std::int64_t now_ns) noexcept {
-  const Peer peer = classify(incarnation, now_ns);
+Peer IncarnationTracker::observe(std::uint64_t incarnation, std::int64_t now_ns,
+                                 bool followed_alive) noexcept {
+  const Peer peer = classify(incarnation, now_ns, followed_alive);
   switch (peer) {
     case Peer::kNew:
       switches_ += followed_ != 0 ? 1 : 0;

@@ -56,11 +56,14 @@ Result<std::unique_ptr<VehicleLink>> VehicleLink::create(const VehicleLinkConfig
   if (Status s = validate(config.vehicle); !s) return s.error();
   auto entities = Entities::create(config);
   if (!entities) return entities.error();
-  return std::unique_ptr<VehicleLink>(
-      new VehicleLink(config, std::move(map), std::move(entities).value()));
+  auto planner_writer = pdds::WriterLiveliness::attach(entities->plans.get());
+  if (!planner_writer) return planner_writer.error();
+  return std::unique_ptr<VehicleLink>(new VehicleLink(
+      config, std::move(map), std::move(entities).value(), std::move(planner_writer).value()));
 }
 
-VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Entities entities)
+VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Entities entities,
+                         std::unique_ptr<pdds::WriterLiveliness> planner_writer)
     : kind_(vehicle_kind(config.vehicle)),
       dds_(std::move(entities)),
       sender_(std::move(map)),
@@ -71,7 +74,9 @@ VehicleLink::VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Ent
       status_buffer_(std::make_unique<pdds::SampleBuffer<grip_msg_PlannerStatus, 4>>(
           &grip_msg_PlannerStatus_desc)),
       incarnation_(new_incarnation()),
-      planner_(config.timing.liveliness_lease.count()),
+      planner_(config.timing.liveliness_lease.count(),
+               kHungLeases * config.timing.liveliness_lease.count()),
+      planner_writer_(std::move(planner_writer)),
       warn_(config.on_warning) {}
 
 Status VehicleLink::publish_state(const grip_msg_VehicleState& state) {
@@ -81,7 +86,7 @@ Status VehicleLink::publish_state(const grip_msg_VehicleState& state) {
   return dds_.states.write(stamped);
 }
 
-bool VehicleLink::from_followed_planner(const grip_msg_Plan& plan) {
+bool VehicleLink::from_followed_planner(const grip_msg_Plan& plan, dds_instance_handle_t writer) {
   if (!check_plan(plan, kind_).ok() || plan.incarnation == 0) {
     ++plans_rejected_;
     return false;
@@ -90,7 +95,8 @@ bool VehicleLink::from_followed_planner(const grip_msg_Plan& plan) {
   const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                                   std::chrono::steady_clock::now().time_since_epoch())
                                   .count();
-  const Peer peer = planner_.observe(plan.incarnation, now_ns);
+  const bool followed_alive = planner_writer_->alive();
+  const Peer peer = planner_.observe(plan.incarnation, now_ns, followed_alive);
   if (peer == Peer::kOther) {
     if (plans_other_planner_++ == 0) {
       warn("plans from a second planner (incarnation " + std::to_string(plan.incarnation) +
@@ -98,9 +104,11 @@ bool VehicleLink::from_followed_planner(const grip_msg_Plan& plan) {
     }
     return false;
   }
+  if (peer == Peer::kNew) planner_writer_->watch(writer);
   if (peer == Peer::kNew && before != 0) {
     warn("planner " + std::to_string(before) +
-         " silent for a liveliness lease: following planner " + std::to_string(plan.incarnation));
+         (followed_alive ? " hung (alive, silent)" : " gone") + ": following planner " +
+         std::to_string(plan.incarnation));
   }
   if (plan.vehicle_incarnation != incarnation_) {
     if (plans_other_vehicle_++ == 0) {
@@ -157,7 +165,8 @@ const grip_msg_Plan* VehicleLink::take_plan() {
     const Result<std::size_t> taken = dds_.plans.take(*plan_buffer_);
     if (!taken.ok() || *taken == 0) break;
     for (std::size_t i = 0; i < *taken; ++i) {
-      if (from_followed_planner((*plan_buffer_)[i])) newest = &(*plan_buffer_)[i];
+      if (from_followed_planner((*plan_buffer_)[i], plan_buffer_->info(i).publication_handle))
+        newest = &(*plan_buffer_)[i];
     }
     if (newest != nullptr) break;  // the next take would reuse the buffer under it
   }
@@ -170,7 +179,7 @@ std::size_t VehicleLink::take_plans(FunctionRef<void(const grip_msg_Plan&)> visi
     const Result<std::size_t> taken = dds_.plans.take(*plan_buffer_);
     if (!taken.ok() || *taken == 0) break;
     for (std::size_t i = 0; i < *taken; ++i) {
-      if (from_followed_planner((*plan_buffer_)[i])) {
+      if (from_followed_planner((*plan_buffer_)[i], plan_buffer_->info(i).publication_handle)) {
         visit((*plan_buffer_)[i]);
         ++visited;
       }

@@ -37,7 +37,7 @@ ReceiveSide<V>::ReceiveSide(const V& vehicle, const VehicleParams& params, Recei
       warn_(std::move(warn)),
       max_map_cells_(max_map_cells),
       receiver_(max_map_cells),
-      vehicle_incarnation_(takeover_ns),
+      vehicle_incarnation_(takeover_ns, takeover_ns),
       planner_incarnation_(planner_incarnation),
       description_(params) {}
 

@@ -26,7 +26,7 @@ TEST(Incarnation, EachStartDrawsANewNonZeroOne) {
 }
 
 TEST(IncarnationTracker, FollowsTheFirstPeerAndRefusesZero) {
-  IncarnationTracker tracker(kLeaseNs);
+  IncarnationTracker tracker(kLeaseNs, kLeaseNs);
   EXPECT_EQ(tracker.observe(0, 0), Peer::kNone);
   EXPECT_EQ(tracker.followed(), 0U);
   EXPECT_EQ(tracker.observe(7, 10), Peer::kNew);
@@ -36,7 +36,7 @@ TEST(IncarnationTracker, FollowsTheFirstPeerAndRefusesZero) {
 }
 
 TEST(IncarnationTracker, ASecondPeerIsRefusedWhileTheFirstSpeaks) {
-  IncarnationTracker tracker(kLeaseNs);
+  IncarnationTracker tracker(kLeaseNs, kLeaseNs);
   ASSERT_EQ(tracker.observe(7, 0), Peer::kNew);
   for (std::int64_t t = 100'000'000; t < 3'000'000'000; t += 100'000'000) {
     EXPECT_EQ(tracker.observe(9, t), Peer::kOther) << "at " << t;
@@ -47,7 +47,7 @@ TEST(IncarnationTracker, ASecondPeerIsRefusedWhileTheFirstSpeaks) {
 }
 
 TEST(IncarnationTracker, AnotherPeerTakesOverOnceTheFollowedOneIsSilentForTheLease) {
-  IncarnationTracker tracker(kLeaseNs);
+  IncarnationTracker tracker(kLeaseNs, kLeaseNs);
   ASSERT_EQ(tracker.observe(7, 0), Peer::kNew);
   EXPECT_EQ(tracker.observe(9, kLeaseNs - 1), Peer::kOther);
   EXPECT_EQ(tracker.classify(9, kLeaseNs), Peer::kNew);
@@ -57,6 +57,22 @@ TEST(IncarnationTracker, AnotherPeerTakesOverOnceTheFollowedOneIsSilentForTheLea
   EXPECT_EQ(tracker.switches(), 1U);
   // The old one, back, is now the other one.
   EXPECT_EQ(tracker.observe(7, kLeaseNs + 1), Peer::kOther);
+}
+
+TEST(IncarnationTracker, APeerStillAliveIsOnlySlowAndIsReplacedOnlyWhenHung) {
+  constexpr std::int64_t kHungNs = 4 * kLeaseNs;
+  IncarnationTracker tracker(kLeaseNs, kHungNs);
+  ASSERT_EQ(tracker.observe(7, 0), Peer::kNew);
+  // Silent for a lease but alive: a slow planner, not a dead one.
+  EXPECT_EQ(tracker.observe(9, kLeaseNs, true), Peer::kOther);
+  EXPECT_EQ(tracker.observe(9, kHungNs - 1, true), Peer::kOther);
+  EXPECT_EQ(tracker.followed(), 7U);
+  // Its liveliness lost: taken over at once.
+  EXPECT_EQ(tracker.classify(9, kLeaseNs, false), Peer::kNew);
+  // Alive but silent for the hung time: taken over too.
+  EXPECT_EQ(tracker.observe(9, kHungNs, true), Peer::kNew);
+  EXPECT_EQ(tracker.followed(), 9U);
+  EXPECT_EQ(tracker.switches(), 1U);
 }
 
 TEST(StampLead, AStampFarAheadOfTheLastIsRefusedUnlessTheWallClockAllowsIt) {

@@ -27,16 +27,21 @@ enum class Peer : std::uint8_t {
 };
 
 // Follows one peer incarnation. Another is taken over only when the one followed has been
-// silent (nothing observed from it) for `takeover_ns`: a restarted peer after its old
-// incarnation's liveliness lease, a standby planner after the active one died.
+// silent (nothing observed from it) for `takeover_ns` and is gone: a restarted peer after its
+// old incarnation's liveliness lease, a standby planner after the active one died. A peer the
+// caller knows is still alive (followed_alive: DDS holds its writer alive) is only slow, and is
+// replaced only after `hung_ns` of silence: a live but hung peer.
 class IncarnationTracker {
  public:
-  explicit IncarnationTracker(std::int64_t takeover_ns) noexcept : takeover_ns_(takeover_ns) {}
+  IncarnationTracker(std::int64_t takeover_ns, std::int64_t hung_ns) noexcept
+      : takeover_ns_(takeover_ns), hung_ns_(hung_ns < takeover_ns ? takeover_ns : hung_ns) {}
 
   // A message from `incarnation` arrived at now_ns; kNew switches to it.
-  Peer observe(std::uint64_t incarnation, std::int64_t now_ns) noexcept;
+  Peer observe(std::uint64_t incarnation, std::int64_t now_ns,
+               bool followed_alive = false) noexcept;
   // What observe() would say, changing nothing.
-  Peer classify(std::uint64_t incarnation, std::int64_t now_ns) const noexcept;
+  Peer classify(std::uint64_t incarnation, std::int64_t now_ns,
+                bool followed_alive = false) const noexcept;
 
   std::uint64_t followed() const noexcept { return followed_; }  // 0: none yet
   std::uint64_t switches() const noexcept { return switches_; }  // kNew after the first
@@ -44,6 +49,7 @@ class IncarnationTracker {
 
  private:
   std::int64_t takeover_ns_;
+  std::int64_t hung_ns_;
   std::uint64_t followed_ = 0;
   std::int64_t last_heard_ns_ = 0;
   std::uint64_t switches_ = 0;

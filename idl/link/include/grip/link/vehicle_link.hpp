@@ -7,9 +7,11 @@
 //
 // One plan source (idl/README.md): the link has an incarnation of its own, stamped on every
 // state and map update, and follows one planner incarnation: the first that sends a plan, and
-// another only after the one followed has sent nothing for one liveliness lease (failover to a
-// standby). Plans of any other planner, and plans made for an earlier incarnation of this
-// vehicle, are rejected, counted and reported (the first of each kind as a warning).
+// another only once the one followed has sent nothing for one liveliness lease and DDS reports
+// its plan writer lost (stopped, killed, cut off: failover to a standby), or has sent nothing for
+// kHungLeases leases while alive (hung). A planner that is merely slow keeps the vehicle. Plans of
+// any other planner, and plans made for an earlier incarnation of this vehicle, are rejected,
+// counted and reported (the first of each kind as a warning).
 
 #include <chrono>
 #include <cstdint>
@@ -28,6 +30,7 @@
 #include "grip/platform/dds/reader.hpp"
 #include "grip/platform/dds/waitset.hpp"
 #include "grip/platform/dds/writer.hpp"
+#include "grip/platform/dds/writer_liveliness.hpp"
 #include "grip/vehicles/vehicle_params.hpp"
 #include "map_update.h"
 #include "plan.h"
@@ -35,6 +38,10 @@
 #include "vehicle_state.h"
 
 namespace grip::link {
+
+// How many liveliness leases a planner DDS still holds alive may stay silent before another is
+// followed: long enough that a loaded machine's slow cycle is not a failover.
+inline constexpr std::int64_t kHungLeases = 4;
 
 struct VehicleLinkConfig {
   platform::dds::DomainId domain = 0;
@@ -118,10 +125,11 @@ class VehicleLink {
     static Result<Entities> create(const VehicleLinkConfig& config);
   };
 
-  VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Entities entities);
+  VehicleLink(const VehicleLinkConfig& config, OccupancyGrid map, Entities entities,
+              std::unique_ptr<platform::dds::WriterLiveliness> planner_writer);
   void send(const grip_msg_MapUpdate& update);
   // A valid plan of the planner followed, made for this incarnation; counts the rest.
-  bool from_followed_planner(const grip_msg_Plan& plan);
+  bool from_followed_planner(const grip_msg_Plan& plan, dds_instance_handle_t writer);
   void warn(const std::string& line) const;
 
   VehicleKind kind_;
@@ -135,6 +143,7 @@ class VehicleLink {
   std::uint64_t map_writes_failed_ = 0;
   std::uint64_t incarnation_;
   IncarnationTracker planner_;
+  std::unique_ptr<platform::dds::WriterLiveliness> planner_writer_;  // the followed one's
   std::uint64_t plans_other_planner_ = 0;
   std::uint64_t plans_other_vehicle_ = 0;
   std::function<void(const std::string&)> warn_;

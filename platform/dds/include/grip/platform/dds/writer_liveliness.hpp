@@ -1,0 +1,47 @@
+#pragma once
+// Whether one remote writer, matched by a reader, is still alive (DDS liveliness): a writer
+// whose peer stopped, was killed or was cut off for its liveliness lease, or that left, is
+// lost; one that comes back is alive again. Cyclone reports liveliness per reader; this keeps
+// the verdict for the one writer the owner cares about (the planner a vehicle follows), so
+// that a peer that is merely slow is told from one that is gone.
+//
+// Installs a liveliness listener on the reader (Cyclone's thread writes one atomic; nothing
+// else runs there) and removes it when destroyed. Not movable: the listener points at it.
+
+#include <dds/dds.h>
+
+#include <atomic>
+#include <memory>
+
+#include "grip/common/result.hpp"
+
+namespace grip::platform::dds {
+
+class WriterLiveliness {
+ public:
+  // `reader` must outlive the returned object.
+  static Result<std::unique_ptr<WriterLiveliness>> attach(dds_entity_t reader);
+  ~WriterLiveliness();
+  WriterLiveliness(const WriterLiveliness&) = delete;
+  WriterLiveliness& operator=(const WriterLiveliness&) = delete;
+
+  // The writer to watch (a sample's publication_handle); it counts as alive from now on.
+  void watch(dds_instance_handle_t writer) noexcept;
+  // Whether the watched writer is alive; true while none is watched.
+  bool alive() const noexcept {
+    return lost_.load(std::memory_order_acquire) != watched_.load(std::memory_order_acquire);
+  }
+
+ private:
+  explicit WriterLiveliness(dds_entity_t reader) noexcept : reader_(reader) {}
+  static void on_liveliness_changed(dds_entity_t reader, dds_liveliness_changed_status_t status,
+                                    void* self);
+
+  dds_entity_t reader_;
+  std::atomic<dds_instance_handle_t> watched_{0};
+  // The last watched writer reported lost (a handle, so that a report about a writer no longer
+  // watched can never mark the one watched now).
+  std::atomic<dds_instance_handle_t> lost_{0};
+};
+
+}  // namespace grip::platform::dds
