@@ -29,7 +29,8 @@ class WriterLiveliness {
   void watch(dds_instance_handle_t writer) noexcept;
   // Whether the watched writer is alive; true while none is watched.
   bool alive() const noexcept {
-    return lost_.load(std::memory_order_acquire) != watched_.load(std::memory_order_acquire);
+    const dds_instance_handle_t watched = watched_.load(std::memory_order_acquire);
+    return watched == 0 || lost_.load(std::memory_order_acquire) != watched;
   }
 
  private:
