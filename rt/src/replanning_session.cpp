@@ -73,6 +73,7 @@ Status ReplanningSession<V>::start(const VehicleSample& state, const Goal& goal)
 template <VehicleModel V>
 void ReplanningSession<V>::note_state(const VehicleSample& state) noexcept {
   last_state_ = state;
+  if (!lockstep_) lead_.observe(state.plan_arrival_cycle, state.plan_arrival_margin_ns);
 }
 
 template <VehicleModel V>
@@ -91,8 +92,8 @@ void ReplanningSession<V>::chain_plan_start(std::int64_t release_ns,
   // before the next release: the clock estimate moved) or needlessly late (more than 1.5 T
   // after it); check_vehicle_follows then moves the tree to the new start.
   const auto cycle_ns = static_cast<std::uint64_t>(ns_of(config_.cycle_s));
-  const auto wanted =
-      static_cast<std::uint64_t>(clock.vehicle_ns(release_ns + period_wall_ns_, time_scale_));
+  const auto wanted = static_cast<std::uint64_t>(
+      clock.vehicle_ns(release_ns + period_wall_ns_, time_scale_) + lead_.lead_ns());
   plan_start_ns_ += cycle_ns;
   const bool too_early = plan_start_ns_ + cycle_ns / 8 < wanted;
   const bool too_late = plan_start_ns_ > wanted + cycle_ns + cycle_ns / 2;

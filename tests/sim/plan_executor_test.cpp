@@ -184,10 +184,11 @@ TEST_F(DdVelocityExecutorTest, BadPlansAreRejectedWithTheirReason) {
             PlanVerdict::kTooManySteps);
   executor.run_until(kSecond);
   EXPECT_EQ(executor.submit(good, kSecond / 2), PlanVerdict::kStartsInThePast);
-  for (int i = 0; i < 4; ++i) {
+  const int queued = static_cast<int>(ExecutorConfig{}.max_queued_plans);
+  for (int i = 0; i < queued; ++i) {
     EXPECT_EQ(executor.submit(good, (2 + i) * kSecond), PlanVerdict::kAccepted);
   }
-  EXPECT_EQ(executor.submit(good, 10 * kSecond), PlanVerdict::kQueueFull);
+  EXPECT_EQ(executor.submit(good, (3 + queued) * kSecond), PlanVerdict::kQueueFull);
   EXPECT_EQ(executor.stats().plans_rejected, 7U);
   EXPECT_EQ(plan_verdict_name(PlanVerdict::kQueueFull), "queue-full");
 }

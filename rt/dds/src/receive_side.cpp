@@ -172,6 +172,10 @@ void ReceiveSide<V>::hand_over_state(const grip_msg_VehicleState& msg) {
   sample.time_scale = msg.time_scale;
   sample.lockstep = msg.lockstep;
   sample.incarnation = msg.incarnation;
+  // How early this planner's plans arrive; a report about another planner's says nothing.
+  const bool ours = msg.plan_incarnation == planner_incarnation_;
+  sample.plan_arrival_cycle = ours ? msg.plan_arrival_cycle : 0;
+  sample.plan_arrival_margin_ns = ours ? msg.plan_arrival_margin_ns : 0;
   handoffs_.states->publish();
 }
 

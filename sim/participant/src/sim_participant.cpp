@@ -8,6 +8,7 @@
 #include <random>
 #include <thread>
 
+#include "grip/common/saturating_cast.hpp"
 #include "grip/link/vehicle_link.hpp"
 #include "grip/platform/clock.hpp"
 #include "grip/sim/coverage.hpp"
@@ -100,6 +101,10 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       ++report.plans_dropped;
       return;
     }
+    // How early it came (the planner leads its start times by what a late one missed by).
+    state_msg.plan_arrival_cycle = plan.cycle;
+    state_msg.plan_arrival_margin_ns = saturating_cast<std::int64_t>(
+        static_cast<double>(plan.start_time_ns) - static_cast<double>(executor->now_ns()));
     if (submit_wire_plan(*executor, plan, steps) != PlanVerdict::kAccepted) {
       ++report.plans_rejected;
       return;

@@ -14,6 +14,7 @@
 // throws. One thread at a time (start-up, then the planning thread).
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -22,6 +23,7 @@
 #include "grip/common/result.hpp"
 #include "grip/rt/cycle_sizing.hpp"
 #include "grip/rt/map_changes.hpp"
+#include "grip/rt/plan_lead.hpp"
 #include "grip/rt/plan_ledger.hpp"
 #include "grip/rt/replanning_cycle.hpp"
 #include "grip/rt/vehicle_clock.hpp"
@@ -38,6 +40,9 @@ struct VehicleSample {
   double time_scale = 1.0;         // vehicle time per wall-clock time
   bool lockstep = false;           // it waits for a plan for each state
   std::uint64_t incarnation = 0;   // the vehicle side's (VehicleState.incarnation); 0: unknown
+  // How early this planner's plan plan_arrival_cycle reached the vehicle (0: no report).
+  std::uint64_t plan_arrival_cycle = 0;
+  std::int64_t plan_arrival_margin_ns = 0;
 };
 
 struct SessionConfig {
@@ -113,6 +118,8 @@ class ReplanningSession {
   const ReplanningCycle<V>& cycle() const noexcept { return *cycle_; }
   const Planner<V>& planner() const noexcept { return cycle_->planner(); }
   std::uint64_t plan_start_ns() const noexcept { return plan_start_ns_; }
+  // Real time: how much later than one cycle ahead plans start, for the link's delay.
+  std::int64_t plan_lead_ns() const noexcept { return lead_.lead_ns(); }
   std::uint64_t cycles() const noexcept { return cycles_; }
   std::uint64_t misses() const noexcept { return misses_; }
   std::uint64_t plans_committed() const noexcept { return plans_committed_; }
@@ -125,7 +132,10 @@ class ReplanningSession {
 
  private:
   ReplanningSession(const V& vehicle, OccupancyGrid grid, const SessionConfig& config)
-      : vehicle_(vehicle), grid_(std::move(grid)), config_(config) {}
+      : vehicle_(vehicle),
+        grid_(std::move(grid)),
+        config_(config),
+        lead_(static_cast<std::int64_t>(std::llround(config.cycle_s * 1e9))) {}
   void follow_forecast(std::uint64_t until_ns) noexcept;
 
   V vehicle_;
@@ -140,6 +150,7 @@ class ReplanningSession {
   std::uint32_t max_edges_ = 0;
   std::optional<VehicleSample> last_state_;
   std::uint64_t plan_start_ns_ = 0;  // t[i], vehicle time
+  PlanLead lead_;
   std::uint64_t cycles_ = 0;
   std::uint64_t misses_ = 0;  // cycles that ended after their deadline, or were skipped
   std::int64_t last_release_ns_ = 0;

@@ -48,9 +48,11 @@
 namespace grip::sim {
 
 struct ExecutorConfig {
-  double step_s = 0.05;                       // integration tick; keep equal to the planner's
-  std::uint32_t max_plan_steps = 1024;        // msg::kMaxPlanSteps
-  std::uint32_t max_queued_plans = 4;         // plans waiting for their start time
+  double step_s = 0.05;                 // integration tick; keep equal to the planner's
+  std::uint32_t max_plan_steps = 1024;  // msg::kMaxPlanSteps
+  // Plans waiting for their start time: over a slow link the planner sends plans up to
+  // rt::PlanLead::kMaxLeadCycles cycles ahead.
+  std::uint32_t max_queued_plans = 16;
   std::uint32_t max_collision_events = 1024;  // recorded in detail; all are counted
   std::uint32_t max_speed_samples = 72'000;   // one per tick: an hour at 20 Hz
   // A plan whose predicted start differs from the vehicle's state is refused at its start time:
