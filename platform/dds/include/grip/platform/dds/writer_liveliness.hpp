@@ -5,13 +5,16 @@
 // the verdict for the one writer the owner cares about (the planner a vehicle follows), so
 // that a peer that is merely slow is told from one that is gone.
 //
-// Installs a liveliness listener on the reader (Cyclone's thread writes one atomic; nothing
-// else runs there) and removes it when destroyed. Not movable: the listener points at it.
+// Installs a liveliness listener on the reader and removes it when destroyed. The listener
+// runs on Cyclone's thread and shares two handles with the owner under a mutex (not for the
+// real-time path): Cyclone orders its callbacks with listener changes internally, but in code
+// ThreadSanitizer cannot see, so the mutex is also what makes that order visible to it.
+// Not movable: the listener points at it.
 
 #include <dds/dds.h>
 
-#include <atomic>
 #include <memory>
+#include <mutex>
 
 #include "grip/common/result.hpp"
 
@@ -26,12 +29,9 @@ class WriterLiveliness {
   WriterLiveliness& operator=(const WriterLiveliness&) = delete;
 
   // The writer to watch (a sample's publication_handle); it counts as alive from now on.
-  void watch(dds_instance_handle_t writer) noexcept;
+  void watch(dds_instance_handle_t writer);
   // Whether the watched writer is alive; true while none is watched.
-  bool alive() const noexcept {
-    const dds_instance_handle_t watched = watched_.load(std::memory_order_acquire);
-    return watched == 0 || lost_.load(std::memory_order_acquire) != watched;
-  }
+  bool alive() const;
 
  private:
   explicit WriterLiveliness(dds_entity_t reader) noexcept : reader_(reader) {}
@@ -39,10 +39,9 @@ class WriterLiveliness {
                                     void* self);
 
   dds_entity_t reader_;
-  std::atomic<dds_instance_handle_t> watched_{0};
-  // The last watched writer reported lost (a handle, so that a report about a writer no longer
-  // watched can never mark the one watched now).
-  std::atomic<dds_instance_handle_t> lost_{0};
+  mutable std::mutex mutex_;
+  dds_instance_handle_t watched_ = 0;
+  bool lost_ = false;
 };
 
 }  // namespace grip::platform::dds
