@@ -7,14 +7,15 @@
 //
 // Installs a liveliness listener on the reader and removes it when destroyed. The listener
 // runs on Cyclone's thread and shares two handles with the owner under a mutex (not for the
-// real-time path): Cyclone orders its callbacks with listener changes internally, but in code
-// ThreadSanitizer cannot see, so the mutex is also what makes that order visible to it.
+// real-time path). Cyclone orders its callbacks after the listener is set and before it is
+// removed, in code ThreadSanitizer cannot see; the mutex is one for all watchers, in static
+// storage, so that taking it also shows TSan that order (a member mutex would itself be memory
+// written by the constructor, unordered for TSan with the callback's first look at it).
 // Not movable: the listener points at it.
 
 #include <dds/dds.h>
 
 #include <memory>
-#include <mutex>
 
 #include "grip/common/result.hpp"
 
@@ -39,7 +40,6 @@ class WriterLiveliness {
                                     void* self);
 
   dds_entity_t reader_;
-  mutable std::mutex mutex_;
   dds_instance_handle_t watched_ = 0;
   bool lost_ = false;
 };
