@@ -226,6 +226,7 @@ void PlannerParticipantFor<V>::reset_planning() {
   wakeups_.target_wanted.signal();
   if (target_thread_.joinable()) target_thread_.join();
   planning_ = new_planning_side();
+  receive_.hand_over_map_again();
   start_target_thread();
 }
 
@@ -277,6 +278,7 @@ Status PlannerParticipantFor<V>::start_up() {
   std::int64_t synced_at = -1;  // when the map was first in sync; -1: not yet
   std::string refusal;
   std::string map_refusal;  // why the map's geometry was refused
+  std::int64_t next_report = started;
   while (!stop_.load(std::memory_order_acquire)) {
     if (Status s = vehicle_accepted(); !s) return s;
     const bool described = receive_.description().verdict() == Described::kMatches;
@@ -333,19 +335,28 @@ Status PlannerParticipantFor<V>::start_up() {
       }
       refusal = s.error().message;  // e.g. the start is not known free yet
     }
-    if (timeout > 0 && platform::now_ns() - started > timeout) {
-      std::string missing;
-      if (!described) missing += " a vehicle description (the vehicle did not describe itself),";
+    const auto missing = [&] {
+      std::string what;
+      if (!described) what += " a vehicle description (the vehicle did not describe itself),";
       if (!in_sync) {
-        missing += map_refusal.empty()
-                       ? " a map in sync,"
-                       : " a map it can use (its geometry was refused: " + map_refusal + "),";
+        what += map_refusal.empty()
+                    ? " a map in sync,"
+                    : " a map it can use (its geometry was refused: " + map_refusal + "),";
       }
-      if (!state) missing += " a vehicle state,";
-      if (!goal && !config_.explore_without_goal) missing += " a goal,";
-      if (missing.empty()) missing = " a start the planner accepts (" + refusal + "),";
-      missing.pop_back();
-      return Error{ErrorCode::kIo, "start-up timed out waiting for" + missing};
+      if (!state) what += " a vehicle state,";
+      if (!goal && !config_.explore_without_goal) what += " a goal,";
+      if (what.empty()) what = " a start the planner accepts (" + refusal + "),";
+      what.pop_back();
+      return what;
+    };
+    const std::int64_t now = platform::now_ns();
+    if (timeout > 0 && now - started > timeout) {
+      return Error{ErrorCode::kIo, "start-up timed out waiting for" + missing()};
+    }
+    // A start-up that takes long says what it waits for (an operator sees why), every 10 s.
+    if (config_.on_progress && now >= next_report) {
+      if (next_report > started) config_.on_progress("start-up: waiting for" + missing());
+      next_report = now + 10'000'000'000;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }

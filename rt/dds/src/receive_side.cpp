@@ -104,6 +104,10 @@ void ReceiveSide<V>::run(const std::atomic<bool>& stop_threads, const std::atomi
     // liveliness.
     static_cast<void>(dds_.waitset.wait(std::chrono::milliseconds(20)));
     if (forget_map_.exchange(false, std::memory_order_acq_rel)) forget_map();
+    if (hand_over_again_.exchange(false, std::memory_order_acq_rel) && receiver_.has_map()) {
+      const OccupancyGrid& map = receiver_.map();
+      mark_dirty(CellBox{0, 0, map.width() - 1, map.height() - 1});
+    }
     take_states(*state_buffer);
     take_maps(*map_buffer);
     take_goals(*goal_buffer);

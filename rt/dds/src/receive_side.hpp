@@ -86,6 +86,9 @@ class ReceiveSide {
   // run()'s thread, start-up: the planner cannot plan on `geometry` (its planner refused it).
   // Updates with it are rejected and counted from now on, and the map is forgotten.
   void refuse_geometry(const link::MapGeometry& geometry);
+  // run()'s thread: a new planning side replaces the one the tiles went to (a new vehicle):
+  // the whole map is handed over again, or it would wait for tiles its predecessor consumed.
+  void hand_over_map_again() { hand_over_again_.store(true, std::memory_order_release); }
   const ReceiveCounters& counters() const noexcept { return counters_; }
   const VehicleClock& clock() const noexcept { return clock_; }
   const DescriptionWatch& description() const noexcept { return description_; }
@@ -138,6 +141,7 @@ class ReceiveSide {
   link::MapGeometry geometry_;
   std::optional<link::MapGeometry> refused_geometry_;  // under geometry_mutex_
   std::atomic<bool> forget_map_{false};
+  std::atomic<bool> hand_over_again_{false};
   ReceiveCounters counters_;
   VehicleClock clock_;
   DescriptionWatch description_;
