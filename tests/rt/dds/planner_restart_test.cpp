@@ -18,6 +18,7 @@
 #include "grip/sim/start_pose.hpp"
 #include "grip/vehicles/dd_velocity.hpp"
 #include "running_planner.hpp"
+#include "vehicle_side.hpp"
 
 namespace grip::rt::dds {
 namespace {
@@ -176,6 +177,26 @@ TEST(PlannerRestart, AStandbyPlannerIsNotFollowedUntilTheActiveOneDiesThenTakesO
   ASSERT_TRUE(run.ok());
   EXPECT_GT(run->plans_from_other_planner, 0U) << "the standby's plans were never rejected";
   EXPECT_EQ(run->planner_failovers, 1U);
+}
+
+// A vehicle side replaced while it stands still sends its map only when asked: the snapshot
+// may reach the planner before its new planning side exists, and must still reach that side.
+TEST(PlannerRestart, AVehicleReplacedAtRestGetsItsMapHandedOverAndIsPlannedForAgain) {
+  constexpr platform::dds::DomainId kDomain = 187;
+  std::atomic<int> ready{0};
+  PlannerParticipantConfig config = planner_config(kDomain, 0.0);
+  config.on_warning = [](const std::string&) {};
+  config.on_ready = [&](const std::string&) { ready.fetch_add(1); };
+  RunningPlanner planner(config);
+  ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
+  for (int start = 1; start <= 3; ++start) {
+    auto vehicle = link::testing::VehicleSide::create(kDomain, VehicleKind::kDdVelocity);
+    ASSERT_NE(vehicle, nullptr);
+    ASSERT_TRUE(vehicle->publish_goal());
+    ASSERT_TRUE(eventually([&] { return ready.load() == start; }, 30000ms, vehicle.get()))
+        << "vehicle side " << start << " was not planned for (" << ready.load() << " start-ups)";
+  }
+  EXPECT_FALSE(planner.returned.load()) << "the planner stopped";
 }
 
 }  // namespace
