@@ -5,10 +5,8 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 
 #include <csignal>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -17,6 +15,7 @@
 
 #include "child_process.hpp"
 #include "grip/platform/dds/security.hpp"
+#include "grip_command.hpp"
 #include "test_paths.hpp"
 
 namespace grip::platform::dds {
@@ -24,23 +23,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kGrip = GRIP_BINARY_DIR "/bin/grip";
+using ::grip::testing::kGrip;
+using ProcessRun = ::grip::testing::CommandRun;
 const std::string kProbe = GRIP_BINARY_DIR "/bin/grip_dds_security_probe";
 
-struct ProcessRun {
-  int status;
-  std::string output;
-};
-
-// Runs a command line (stdout and stderr captured).
+// Runs a command line, stdout and stderr captured.
 ProcessRun run(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return {-1, "popen failed"};
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return ::grip::testing::run_command(command + " 2>&1");
 }
 
 // The probe in a process of its own, started now, its result later.
