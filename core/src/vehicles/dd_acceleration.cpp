@@ -97,10 +97,12 @@ DdAcceleration::Control DdAcceleration::sample_control(const State& q, double ho
 DdAcceleration::Control DdAcceleration::braking_control(const State& q) const noexcept {
   // The faster wheel brakes at the limit; the other is scaled so both stop together. With the
   // ratio fixed the wheel speed difference shrinks too, so the turn-rate bound holds.
+  // Each wheel's share of the fastest speed first: decel / fastest overflows for a subnormal
+  // speed, and infinity times a wheel at rest is not a number.
   const double fastest = std::max(std::abs(q[3]), std::abs(q[4]));
   if (fastest == 0.0) return Control::Zero();
-  const double scale = params_.braking_decel_m_s2 / fastest;
-  return {-q[3] * scale, -q[4] * scale};
+  const double decel = params_.braking_decel_m_s2;
+  return {-(q[3] / fastest) * decel, -(q[4] / fastest) * decel};
 }
 
 DdAcceleration::State DdAcceleration::brake_step(const State& q, double dt) const noexcept {

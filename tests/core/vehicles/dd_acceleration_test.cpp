@@ -70,6 +70,19 @@ TEST_F(DdAccelerationTest, BrakingStopsBothWheelsTogetherAtTheMaximalDeceleratio
   EXPECT_EQ(q[4], 0.0);
 }
 
+TEST_F(DdAccelerationTest, BrakingFromASubnormalWheelSpeedRestsWithoutANumberLost) {
+  // A plan with a subnormal acceleration (found by fuzz_plan) leaves one wheel creeping at a
+  // subnormal speed and the other at rest: braking must neither overflow nor make NaN.
+  const DdAcceleration::State q = state(3.2, 3.2, 0.0, 6.6e-310, 0.0);
+  const auto u = robot.braking_control(q);
+  EXPECT_DOUBLE_EQ(u[0], -0.6);
+  EXPECT_EQ(u[1], 0.0);
+  const auto rest = robot.brake_step(q, kDt);
+  ASSERT_TRUE(robot.validate_state(rest).ok());
+  EXPECT_TRUE(robot.is_stopped(rest));
+  EXPECT_DOUBLE_EQ(rest[0], 3.2);
+}
+
 TEST_F(DdAccelerationTest, BrakingFromTopSpeedStopsWithinTheModelsStoppingTime) {
   DdAcceleration::State q = state(0, 0, 0, -3.0, -3.0);
   int steps = 0;
