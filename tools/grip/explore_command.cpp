@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <fstream>
 #include <iomanip>
@@ -345,6 +346,9 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
   std::optional<LinkWatch> watch;
   if (with_planner) {
     rt::dds::PlannerParticipantConfig pc = planner_participant_config(*p);
+    // One process: the planner is sized for the map its simulator sends, however large.
+    pc.max_map_cells = std::max(
+        pc.max_map_cells, static_cast<std::uint32_t>(world->truth.width() * world->truth.height()));
     pc.dds_config = link.dds_config;
     if (trace) pc.on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
     pc.seed = o.seed;

@@ -13,7 +13,7 @@ namespace grip::link {
 
 namespace {
 
-constexpr std::array<NamedValue<Rejection>, 19> kRejectionNames{{
+constexpr std::array<NamedValue<Rejection>, 20> kRejectionNames{{
     {Rejection::kNone, "none"},
     {Rejection::kUnknownVehicleKind, "unknown vehicle kind"},
     {Rejection::kWrongVehicleKind, "wrong vehicle kind"},
@@ -25,6 +25,7 @@ constexpr std::array<NamedValue<Rejection>, 19> kRejectionNames{{
     {Rejection::kStampNotIncreasing, "timestamp not increasing"},
     {Rejection::kBadGeometry, "bad map geometry"},
     {Rejection::kGeometryMismatch, "map geometry mismatch"},
+    {Rejection::kMapTooLarge, "map larger than this receiver is sized for"},
     {Rejection::kPatchOutsideMap, "patch outside the map"},
     {Rejection::kWrongLength, "wrong length"},
     {Rejection::kBadCellValue, "bad cell value"},
@@ -154,8 +155,12 @@ Verdict check_map_update(const grip_msg_MapUpdate& msg, const MapGeometry* expec
   if (msg.map_width_cells == 0 || msg.map_height_cells == 0 ||
       msg.map_width_cells > static_cast<std::uint32_t>(OccupancyGrid::kMaxSideCells) ||
       msg.map_height_cells > static_cast<std::uint32_t>(OccupancyGrid::kMaxSideCells) ||
-      static_cast<std::uint64_t>(msg.map_width_cells) * msg.map_height_cells > max_map_cells) {
+      static_cast<std::uint64_t>(msg.map_width_cells) * msg.map_height_cells >
+          OccupancyGrid::kMaxCells) {
     return reject(Rejection::kBadGeometry, "map_width_cells x map_height_cells");
+  }
+  if (static_cast<std::uint64_t>(msg.map_width_cells) * msg.map_height_cells > max_map_cells) {
+    return reject(Rejection::kMapTooLarge, "map_width_cells x map_height_cells");
   }
   if (expected != nullptr && !(geometry_of(msg) == *expected)) {
     return reject(Rejection::kGeometryMismatch, "map geometry");

@@ -201,6 +201,7 @@ void ReceiveSide<V>::take_maps(pdds::SampleBuffer<grip_msg_MapUpdate, 8>& buffer
                                            : link::MapApplied{fresh, false, false, false, {}};
       if (!applied.verdict.ok()) {
         counters_.rejected_map_update.fetch_add(1, std::memory_order_relaxed);
+        if (applied.verdict.reason == link::Rejection::kMapTooLarge) too_large(buffer[i]);
         rejected("map update", applied.verdict, now);
         continue;
       }
@@ -339,6 +340,25 @@ void ReceiveSide<V>::rejected(const char* topic, const link::Verdict& verdict,
   warn(line);
   log_suppressed_ = 0;
   last_log_ns_ = now_ns;
+}
+
+// Once per map: what to change, which the rate-limited rejection line cannot say.
+template <VehicleModel V>
+void ReceiveSide<V>::too_large(const grip_msg_MapUpdate& msg) {
+  const link::MapGeometry geometry = link::geometry_of(msg);
+  if (too_large_reported_ == geometry) return;
+  too_large_reported_ = geometry;
+  const std::uint64_t cells = static_cast<std::uint64_t>(msg.map_width_cells) * msg.map_height_cells;
+  std::string line = "the vehicle's map is ";
+  line.append(std::to_string(msg.map_width_cells))
+      .append(" x ")
+      .append(std::to_string(msg.map_height_cells))
+      .append(" cells (")
+      .append(std::to_string(cells))
+      .append("), more than this planner is sized for (planner.max_map_cells ")
+      .append(std::to_string(max_map_cells_))
+      .append("): raise planner.max_map_cells in the parameter file");
+  warn(line);
 }
 
 template <VehicleModel V>

@@ -104,6 +104,7 @@ class ReceiveSide {
   void hand_over_tiles();
   void check_liveliness(bool stopping);
   void rejected(const char* topic, const link::Verdict& verdict, std::int64_t now_ns);
+  void too_large(const grip_msg_MapUpdate& msg);
   // Whether a sample of `incarnation` is from the vehicle followed (taking a new one over, and
   // forgetting the old one's, when it is due); else the reason to reject it.
   link::Verdict follow(std::uint64_t incarnation, std::int64_t now_ns);
@@ -140,6 +141,7 @@ class ReceiveSide {
   mutable std::mutex geometry_mutex_;  // run()'s thread reads the geometry at start-up
   link::MapGeometry geometry_;
   std::optional<link::MapGeometry> refused_geometry_;  // under geometry_mutex_
+  std::optional<link::MapGeometry> too_large_reported_;
   std::atomic<bool> forget_map_{false};
   std::atomic<bool> hand_over_again_{false};
   ReceiveCounters counters_;

@@ -169,7 +169,7 @@ TEST(MapSync, TooLargeAMapIsRefused) {
   MapSender sender(unknown_map());
   MapReceiver receiver(10'000);  // smaller than 300 x 300
   sender.send_snapshot(1, [&](const grip_msg_MapUpdate& m) {
-    EXPECT_EQ(receiver.apply(m).verdict.reason, Rejection::kBadGeometry);
+    EXPECT_EQ(receiver.apply(m).verdict.reason, Rejection::kMapTooLarge);
   });
   EXPECT_FALSE(receiver.has_map());
 }

@@ -132,6 +132,10 @@ TEST(Messages, BadMapUpdatesAreRejectedWithTheirReason) {
       {"origin inf", [](Patch& p) { p.msg.map_origin_x_m = kInf; }, Rejection::kNotFinite},
       {"other map", [](Patch& p) { p.msg.map_width_cells = 12; }, Rejection::kGeometryMismatch},
       {"huge map", [](Patch& p) { p.msg.map_height_cells = 100000; }, Rejection::kBadGeometry},
+      // A real map, larger than this receiver's 1 M cells: told apart from a nonsensical one.
+      {"larger than the receiver",
+       [](Patch& p) { p.msg.map_width_cells = 2048, p.msg.map_height_cells = 1024; },
+       Rejection::kMapTooLarge},
       // Valid-looking geometry the planner's grids are not sized for (the issue's "unusual
       // resolution" that made the planner exit at start-up): rejected and counted instead.
       {"resolution 1e-300", [](Patch& p) { p.msg.resolution_m = 1e-300; }, Rejection::kBadGeometry},

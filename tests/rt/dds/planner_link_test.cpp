@@ -2,10 +2,12 @@
 // an unusable map does: the vehicle executes one planner's plans and reports the other's; a
 // planner started long after the goal takes the durable goal; a state stamped far in the future
 // is rejected without locking the vehicle out; a map geometry the planner cannot plan on is
-// rejected and counted, and the planner waits for a vehicle it can plan for.
+// rejected and counted, and the planner waits for a vehicle it can plan for; a map larger than
+// the planner is sized for is refused with the parameter to raise.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -202,6 +204,49 @@ TEST(UnusableGeometry, AMapThePlannerCannotPlanOnIsRejectedAndCountedAndThePlann
       << "the planner never planned for the next vehicle";
   EXPECT_GE(status->rejected_map_update, 1U);
   EXPECT_FALSE(planner.returned.load());
+}
+
+TEST(MapTooLarge, ARealMapLargerThanThePlannerIsSizedForIsRefusedNamingTheParameter) {
+  constexpr platform::dds::DomainId kDomain = 188;
+  std::mutex mutex;
+  std::vector<std::string> warnings;
+  PlannerParticipantConfig config = planner_config(kDomain, 0.0);
+  config.max_map_cells = 10'000;
+  config.on_warning = [&](const std::string& line) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    warnings.push_back(line);
+  };
+  RunningPlanner planner(config);
+  ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
+  const auto told = [&] {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const std::string& w : warnings) {
+      if (w.find("200 x 200 cells (40000)") != std::string::npos &&
+          w.find("planner.max_map_cells 10000") != std::string::npos) {
+        return true;
+      }
+    }
+    return false;
+  };
+  link::VehicleLinkConfig link_config;
+  link_config.domain = kDomain;
+  link_config.topic_prefix = ::grip::testing::private_topic_prefix();
+  link_config.vehicle = default_vehicle_params(VehicleKind::kDdVelocity);
+  OccupancyGrid big = OccupancyGrid::create(200, 200, 0.1, 0.0, 0.0, Cell::kFree).value();
+  auto link = link::VehicleLink::create(link_config, std::move(big)).value();
+  ASSERT_TRUE(eventually(
+      [&] {
+        link->publish_map_updates(CellBox{0, 0, 199, 199}, 1);
+        return told();
+      },
+      20000ms))
+      << "the planner never said which parameter to raise";
+  const std::lock_guard<std::mutex> lock(mutex);
+  const auto said = std::count_if(warnings.begin(), warnings.end(), [](const std::string& w) {
+    return w.find("raise planner.max_map_cells") != std::string::npos;
+  });
+  EXPECT_EQ(said, 1) << "said once per map, not per sample";
+  EXPECT_FALSE(planner.returned.load()) << "the planner exited on a map it was not sized for";
 }
 
 }  // namespace

@@ -30,6 +30,7 @@ enum class Rejection : std::uint8_t {
   kStampNotIncreasing,  // older than or equal to the last accepted sample
   kBadGeometry,         // map geometry not positive or not finite
   kGeometryMismatch,    // map geometry differs from the map being synchronised
+  kMapTooLarge,         // a valid map with more cells than the receiver was sized for
   kPatchOutsideMap,
   kWrongLength,  // sequence length differs from what the other fields say
   kBadCellValue,
@@ -90,8 +91,8 @@ MapGeometry geometry_of(const OccupancyGrid& grid) noexcept;
 
 // A map update: geometry valid (finite; resolution in [OccupancyGrid::kMinResolutionM,
 // kMaxResolutionM], origin within kMaxOriginM, sizes within the grid's limits and
-// max_map_cells: a map the planner's grids are not sized for is rejected here, not at
-// start-up), equal to `expected` when given, the patch inside the map,
+// max_map_cells: a map the planner's grids are not sized for is rejected here as kMapTooLarge,
+// not at start-up), equal to `expected` when given, the patch inside the map,
 // the cell sequence exactly width x height long with values 0..2, snapshot fields consistent.
 Verdict check_map_update(const grip_msg_MapUpdate& msg, const MapGeometry* expected,
                          std::uint32_t max_map_cells) noexcept;
