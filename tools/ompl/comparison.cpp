@@ -41,6 +41,8 @@ void run_grip(const V& vehicle, const Scene& scene, RunResult& out) {
   PlannerConfig config;
   config.seed = out.spec.seed;
   config = tools::config_for_edge_cap(config, kGripEdgeCap);
+  // Like OMPL's planners, which grow until the time limit, GRIP is not stopped by its memory.
+  config.recycle_full_pool = true;
   auto planner = Planner<V>::create(vehicle, scene.grid, config);
   if (!planner) {
     out.error = planner.error().message;

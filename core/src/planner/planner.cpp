@@ -242,6 +242,7 @@ SolveResult Planner<V>::solve(FunctionRef<bool()> should_stop) noexcept {
     }
     if (!tree_.has_room_for_propagation()) {
       stats_.pool_exhausted = true;
+      if (config_.recycle_full_pool && recycle_pool()) continue;
       result.reason = StopReason::kPoolExhausted;
       break;
     }
@@ -251,6 +252,25 @@ SolveResult Planner<V>::solve(FunctionRef<bool()> should_stop) noexcept {
                            : (best_.edge != kNoHandle ? SolveStatus::kApproximateSolution
                                                       : SolveStatus::kNoSolution);
   return result;
+}
+
+template <VehicleModel V>
+bool Planner<V>::recycle_pool() noexcept {
+  // The baselines (Fig. 5/6) are compared as the paper ran them: until the pools run out.
+  if (config_.selection != Selection::kGrip) return false;
+  const std::uint32_t before = tree_.trajectory_count();
+  retainment_.recycle(*this);
+  cycle_edges_ = 0;
+  ++stats_.pool_recycles;
+  if (before - tree_.trajectory_count() >= tree_.trajectory_capacity() / 10) return true;
+  // What is left is mostly the path to the best state, split at nearly every record: a dead
+  // end as far as the search can tell, and too little room to be worth a pass per handful of
+  // propagations. Unless it holds a solution, the search starts over from the root with the
+  // whole pool; the random stream goes on, so the next attempt differs.
+  if (solved()) return false;
+  const State root = tree_.edge_state(tree_.root(), tree_.edge(tree_.root()).last);
+  reset_tree(root);
+  return true;
 }
 
 template <VehicleModel V>

@@ -41,24 +41,36 @@ void Retainment<V>::run(Planner<V>& p, TreeState new_root, bool map_changed,
   tree.unlink(root);
   tree.make_root(root);
   prune_and_order(p, root, shift, map_changed, newly_blocked, known_solution);
-  // Everything the walk did not keep goes back to the pools.
-  const std::uint32_t before_release = tree.edge_count();
-  for (EdgeHandle e = 0; e < tree.edge_capacity(); ++e) {
-    if (tree.contains(e) && keep_[e] == 0) tree.release_edge(e);
-  }
-  stats_.released = before_release - tree.edge_count();
+  std::uint32_t kept = 0;
+  for (const EdgeHandle e : order_) kept += keep_[e] != 0 ? 1U : 0U;
+  // Between cycles the edge pool decides: trajectories are reused by the splits of re-rooting.
+  make_room(p, root, static_cast<double>(kept) / tree.edge_capacity());
+  release_unkept(p, root);
   rescore_tree(p, known_solution);
   stats_.edges_kept = tree.edge_count();
 }
 
 template <VehicleModel V>
-void Retainment<V>::prune_and_order(Planner<V>& p, EdgeHandle root, std::uint32_t shift,
-                                    bool map_changed, const CellBox* newly_blocked,
-                                    TreeState known_solution) noexcept {
+void Retainment<V>::recycle(Planner<V>& p) noexcept {
   auto& tree = p.tree_;
-  // keep_[e]: 0 released, 1 kept, 2 kept but its children released (it was cut short);
-  // kInGoal marks edges with a sampled state in F, then those with one below them.
-  constexpr std::uint8_t kInGoal = 4;
+  stats_ = RetainStats{};
+  stats_.edges_before = tree.edge_count();
+  const TreeState known_solution = p.solution_;
+  const EdgeHandle root = tree.root();
+  walk_from(tree, root);
+  for (const EdgeHandle e : order_) keep_[e] = 1;
+  // Whichever pool is fuller decides, trajectories included: the solve stopped on either.
+  const double edge_use = static_cast<double>(tree.edge_count()) / tree.edge_capacity();
+  const double trajectory_use =
+      static_cast<double>(tree.trajectory_count()) / tree.trajectory_capacity();
+  make_room(p, root, std::max(edge_use, trajectory_use));
+  release_unkept(p, root);
+  rescore_tree(p, known_solution);
+  stats_.edges_kept = tree.edge_count();
+}
+
+template <VehicleModel V>
+void Retainment<V>::walk_from(const Tree<typename V::State>& tree, EdgeHandle root) noexcept {
   keep_.clear();
   for (std::uint32_t e = 0; e < tree.edge_capacity(); ++e) GRIP_ASSERT(keep_.push_back(0));
   order_.clear();
@@ -72,6 +84,17 @@ void Retainment<V>::prune_and_order(Planner<V>& p, EdgeHandle root, std::uint32_
       GRIP_ASSERT(stack_.push_back(c));
     }
   }
+}
+
+template <VehicleModel V>
+void Retainment<V>::prune_and_order(Planner<V>& p, EdgeHandle root, std::uint32_t shift,
+                                    bool map_changed, const CellBox* newly_blocked,
+                                    TreeState known_solution) noexcept {
+  auto& tree = p.tree_;
+  // keep_[e]: 0 released, 1 kept, 2 kept but its children released (it was cut short);
+  // kInGoal marks edges with a sampled state in F, then those with one below them.
+  constexpr std::uint8_t kInGoal = 4;
+  walk_from(tree, root);
 
   // Which states the new map can have invalidated: none when it did not change; those within
   // the chassis' reach of the newly blocked cells when the caller says where; else all.
@@ -171,8 +194,12 @@ void Retainment<V>::prune_and_order(Planner<V>& p, EdgeHandle root, std::uint32_
   }
   for (const EdgeHandle e : order_) keep_[e] = static_cast<std::uint8_t>(keep_[e] & ~kInGoal);
   keep_[root] = 1;
-  make_room(p, root);
+}
 
+template <VehicleModel V>
+void Retainment<V>::release_unkept(Planner<V>& p, EdgeHandle root) noexcept {
+  auto& tree = p.tree_;
+  GRIP_ASSERT(keep_[root] != 0);
   // Repair the links of what stays: drop released children from the child lists.
   for (const EdgeHandle e : order_) {
     if (keep_[e] == 0) continue;
@@ -192,20 +219,26 @@ void Retainment<V>::prune_and_order(Planner<V>& p, EdgeHandle root, std::uint32_
     if (previous != kNoHandle) tree.edge(previous).next_sibling = kNoHandle;
     edge.first_child = first;
   }
+  // Everything not kept goes back to the pools.
+  const std::uint32_t before_release = tree.edge_count();
+  for (EdgeHandle e = 0; e < tree.edge_capacity(); ++e) {
+    if (tree.contains(e) && keep_[e] == 0) tree.release_edge(e);
+  }
+  stats_.released = before_release - tree.edge_count();
 }
 
 template <VehicleModel V>
-void Retainment<V>::make_room(const Planner<V>& p, EdgeHandle root) noexcept {
+void Retainment<V>::make_room(const Planner<V>& p, EdgeHandle root, double pool_use) noexcept {
   auto& tree = p.tree_;
   // Memory is fixed and a replanning tree only loses what falls behind the root, so a long run
-  // would fill the pools and stop growing. Past 60% of the edge pool, the subtrees whose best
-  // estimated arrival (rho + time at a quarter of top speed) is worst are released until about
-  // 40% remain. A subtree's best is never better than its parent's, so what stays is a tree.
+  // would fill the pools and stop growing. Past 60% of the pool (`pool_use`, the kept share),
+  // the subtrees whose best estimated arrival (rho + time at a quarter of top speed) is worst
+  // are released until about 40% remain. A subtree's best is never better than its parent's,
+  // so what stays is a tree.
+  if (pool_use <= 0.6) return;
   std::uint32_t kept = 0;
   for (const EdgeHandle e : order_) kept += keep_[e] != 0 ? 1U : 0U;
-  const auto capacity = static_cast<double>(tree.edge_capacity());
-  if (kept <= static_cast<std::uint32_t>(0.6 * capacity)) return;
-  const auto target = static_cast<std::uint32_t>(0.4 * capacity);
+  const auto target = static_cast<std::uint32_t>(kept * (0.4 / pool_use));
   double low = std::numeric_limits<double>::infinity();
   double high = -std::numeric_limits<double>::infinity();
   for (auto it = order_.end(); it != order_.begin();) {

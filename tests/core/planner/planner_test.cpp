@@ -234,6 +234,42 @@ TEST(PoolExhaustion, StopsGrowingSaysSoAndStillReturnsItsBestAnswer) {
   EXPECT_GT(plan.size(), 0U);
 }
 
+TEST(PoolRecycling, AFullPoolIsRecycledAndTheSearchGoesOnToTheGoal) {
+  // Around the wall with room for 60 trajectories at a time, over seeds: most searches need
+  // more propagations than a full pool holds. Recycled, every one reaches the goal; without
+  // recycling the same search (the same random stream up to the first full pool) stops there.
+  const OccupancyGrid grid = test::room_with_wall();
+  const auto robot = DdAcceleration::create({}).value();
+  const Goal goal = Goal::disk(9.5, 2.0, 1.0);
+  const auto start = robot.rest_state(2, 2, 0);
+  PlannerConfig config;
+  config.max_edges = 120;
+  config.max_trajectories = 60;
+  int needed_recycling = 0;
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE(seed);
+    config.seed = seed;
+    config.recycle_full_pool = true;
+    auto planner = Planner<DdAcceleration>::create(robot, grid, config).value();
+    ASSERT_TRUE(planner.set_problem(start, goal));
+    EXPECT_EQ(planner.solve(StopAfterIterations{&planner.stats(), 200'000}).reason,
+              StopReason::kGoalReached);
+    EXPECT_LE(planner.tree().edge_count(), config.max_edges);
+    test::expect_solution_replays_into_goal(planner, start, goal);
+    if (planner.stats().pool_recycles == 0) continue;
+    ++needed_recycling;
+    EXPECT_GT(planner.stats().edges_added, config.max_trajectories);
+
+    config.recycle_full_pool = false;
+    auto stopping = Planner<DdAcceleration>::create(robot, grid, config).value();
+    ASSERT_TRUE(stopping.set_problem(start, goal));
+    EXPECT_EQ(stopping.solve(StopAfterIterations{&stopping.stats(), 200'000}).reason,
+              StopReason::kPoolExhausted);
+    EXPECT_FALSE(stopping.solved());
+  }
+  EXPECT_GE(needed_recycling, 5);
+}
+
 TEST(Determinism, TheSameSeedReproducesTheRunAndAnotherSeedDoesNot) {
   const OccupancyGrid grid = test::room_with_wall();
   const auto robot = DdAcceleration::create({}).value();

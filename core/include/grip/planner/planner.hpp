@@ -7,7 +7,8 @@
 //
 // Reads like OMPL's planners: set a problem, then solve(termination condition) returns a
 // status. Everything is reserved by create(); solve() allocates nothing, never blocks and
-// never throws. When the pools run out it stops growing, says so, and keeps its best answer.
+// never throws. When the pools run out it stops growing, says so, and keeps its best answer,
+// or, when configured to, releases its worst subtrees and goes on.
 
 #include <cmath>
 #include <cstdint>
@@ -47,7 +48,8 @@ struct PlannerStats {
   std::uint64_t propagations = 0;  // integration steps of random plans
   std::uint64_t collision_checks = 0;
   std::uint64_t contingency_checks = 0;  // braking maneuvers run
-  bool pool_exhausted = false;
+  bool pool_exhausted = false;      // the pools ran out at least once
+  std::uint64_t pool_recycles = 0;  // and were recycled (PlannerConfig::recycle_full_pool)
 };
 
 // Whether a retainment recomputes rho toward F (a whole-map wavefront) or keeps the field of
@@ -176,6 +178,7 @@ class Planner {
           CollisionChecker checker, DistanceField field, BaselineSelection<V> baseline);
 
   bool iterate() noexcept;
+  bool recycle_pool() noexcept;  // true if it made room
   Status problem_status(RetainStatus status, const State& start, const std::string& goal);
   RetainStatus set_target(const Goal& goal) noexcept;  // F, then rho's wavefront toward it
   bool in_goal_region(const State& q) const noexcept {

@@ -73,6 +73,11 @@ struct PlannerConfig {
   // Whether solve() returns as soon as a state in the goal region is reached. Replanning and
   // timing runs keep growing the tree.
   bool stop_at_goal = true;
+  // Whether solve() goes on when the pools run out, after releasing the worst subtrees to them
+  // (as retainment does between cycles): fixed memory must not end a standalone search, whose
+  // caller holds no state of the tree across solve(). Replanning leaves it off: the plan it
+  // committed before solve() must stay in the tree, and retainment makes room every cycle.
+  bool recycle_full_pool = false;
 
   std::uint64_t seed = 1;
 

@@ -41,12 +41,17 @@ class Retainment {
   // are already those of the new cycle.
   void run(Planner<V>& p, TreeState new_root, bool map_changed,
            const CellBox* newly_blocked) noexcept;
+  // The pools ran out during a solve: the worst subtrees go back to them (as between cycles,
+  // without re-rooting or checking anything again), priorities and the heap afresh.
+  void recycle(Planner<V>& p) noexcept;
   const RetainStats& last() const noexcept { return stats_; }
 
  private:
+  void walk_from(const Tree<typename V::State>& tree, EdgeHandle root) noexcept;  // order_
   void prune_and_order(Planner<V>& p, EdgeHandle root, std::uint32_t shift, bool map_changed,
                        const CellBox* newly_blocked, TreeState known_solution) noexcept;
-  void make_room(const Planner<V>& p, EdgeHandle root) noexcept;
+  void make_room(const Planner<V>& p, EdgeHandle root, double pool_use) noexcept;
+  void release_unkept(Planner<V>& p, EdgeHandle root) noexcept;
   TreeState kept_goal_state(const Planner<V>& p, TreeState s) const noexcept;
   void rescore_tree(Planner<V>& p, TreeState known_solution) noexcept;
 
