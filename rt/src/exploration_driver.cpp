@@ -32,7 +32,7 @@ ExplorationDriver<V>::ExplorationDriver(ExplorationDriver&& other) noexcept
       selector_(std::move(other.selector_)),
       requested_(other.requested_),
       cycles_since_request_(other.cycles_since_request_),
-      map_changed_since_request_(other.map_changed_since_request_),
+      written_since_request_(other.written_since_request_),
       explored_(other.explored_),
       groups_(other.groups_),
       groups_given_up_(other.groups_given_up_),
@@ -42,9 +42,9 @@ ExplorationDriver<V>::ExplorationDriver(ExplorationDriver&& other) noexcept
 
 template <VehicleModel V>
 bool ExplorationDriver<V>::update(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
-                                  std::uint64_t plan_start_ns, bool map_changed,
+                                  std::uint64_t plan_start_ns, const MapChanges& changes,
                                   bool lockstep) noexcept {
-  map_changed_since_request_ = map_changed_since_request_ || map_changed;
+  written_since_request_.add(changes.written);
   if (lockstep) {
     if (requested_ && ++cycles_since_request_ < config_.refresh_cycles) return false;
     choose_now(cycle, grid, plan_start_ns);
@@ -90,7 +90,7 @@ void ExplorationDriver<V>::request(const ReplanningCycle<V>& cycle, const Occupa
                                    std::uint64_t plan_start_ns) noexcept {
   requested_ = true;
   cycles_since_request_ = 0;
-  if (std::exchange(map_changed_since_request_, false)) target_.copy_map(grid);
+  target_.copy_map(grid, std::exchange(written_since_request_, CellBox{}));
   const typename V::State& here = cycle.plan_start();
   robot_x_m_ = state_x(here);
   robot_y_m_ = state_y(here);

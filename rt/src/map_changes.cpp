@@ -25,6 +25,7 @@ void write_box(OccupancyGrid& grid, const CellBox& box, ValueAt value_at, MapCha
     }
   }
   changes.applied = true;
+  changes.written.add(box);
 }
 
 }  // namespace

@@ -115,7 +115,7 @@ ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double s
     session.set_plan_start_after(sample);
     session.check_vehicle_follows();
     session.note_map_changes(changes);
-    driver.update(session.cycle(), map, session.plan_start_ns(), changes.applied, true);
+    driver.update(session.cycle(), map, session.plan_start_ns(), changes, true);
     if (driver.explored()) {
       report.complete = true;
       break;

@@ -43,20 +43,37 @@ ExplorationTarget::ExplorationTarget(const ExplorationTargetConfig& config, Occu
       clearance_(std::move(clearance)),
       frontiers_(std::move(frontiers)),
       rho_(std::move(rho)),
+      clearance_exact_d2_(clearance_.squared_cells_at_least(config.frontier.clearance_m)),
       retries_left_(config.retry_rounds) {}
 
-void ExplorationTarget::copy_map(const OccupancyGrid& map) noexcept {
+void ExplorationTarget::copy_map(const OccupancyGrid& map, const CellBox& written) noexcept {
   GRIP_ASSERT(map.width() == map_.width() && map.height() == map_.height() &&
               map.resolution() == map_.resolution());
+  const CellBox box{std::max(written.x0, 0), std::max(written.y0, 0),
+                    std::min(written.x1, map.width() - 1), std::min(written.y1, map.height() - 1)};
+  if (box.empty()) return;
   const std::span<const Cell> from = map.cells();
-  std::copy(from.begin(), from.end(), map_.mutable_cells().begin());
+  const std::span<Cell> to = map_.mutable_cells();
+  for (int y = box.y0; y <= box.y1; ++y) {
+    for (int x = box.x0; x <= box.x1; ++x) {
+      const std::uint32_t i = map.index(x, y);
+      if ((to[i] == Cell::kFree) != (from[i] == Cell::kFree)) {
+        clearance_changed_.add(CellBox{x, y, x, y});
+      }
+      to[i] = from[i];
+    }
+  }
   map_changed_ = true;
 }
 
 ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
                                             std::int64_t now_ns) noexcept {
   const bool map_changed = std::exchange(map_changed_, false);
-  if (map_changed) clearance_.compute(map_);
+  // Clearance near what changed only (created computed; exact as far as frontiers and rho ask).
+  if (map_changed) {
+    static_cast<void>(clearance_.update(map_, clearance_changed_, clearance_exact_d2_));
+    clearance_changed_ = CellBox{};
+  }
   ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m);
   if (status == ExplorationStatus::kComplete && frontiers_.given_up_groups() > 0 &&
       retries_left_ > 0) {

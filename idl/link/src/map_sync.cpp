@@ -17,6 +17,16 @@ std::uint64_t fnv_bytes(std::uint64_t h, const void* data, std::size_t n) noexce
   return h;
 }
 
+// A cell's share of the checksum: its index and value mixed (SplitMix64's finaliser), so that
+// the XOR over cells tells maps apart and follows a write cell by cell.
+std::uint64_t cell_term(std::uint32_t index, Cell value) noexcept {
+  std::uint64_t z = (static_cast<std::uint64_t>(index) << 2 | static_cast<std::uint64_t>(value)) +
+                    0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
 // Calls f(patch) for each piece of `box` (inclusive, non-empty) of at most 256 x 256 cells,
 // bottom row of pieces first.
 template <typename F>
@@ -47,8 +57,19 @@ std::uint64_t map_checksum(const OccupancyGrid& grid) noexcept {
     const auto bits = std::bit_cast<std::uint64_t>(v);
     h = fnv_bytes(h, &bits, sizeof bits);
   }
+  return h ^ cells_checksum(grid, CellBox{0, 0, grid.width() - 1, grid.height() - 1});
+}
+
+std::uint64_t cells_checksum(const OccupancyGrid& grid, const CellBox& box) noexcept {
+  std::uint64_t h = 0;
   const auto cells = grid.cells();
-  return fnv_bytes(h, cells.data(), cells.size());
+  for (int y = box.y0; y <= box.y1; ++y) {
+    for (int x = box.x0; x <= box.x1; ++x) {
+      const std::uint32_t i = grid.index(x, y);
+      h ^= cell_term(i, cells[i]);
+    }
+  }
+  return h;
 }
 
 MapSender::MapSender(OccupancyGrid map)

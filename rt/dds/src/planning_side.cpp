@@ -30,6 +30,7 @@ Status PlanningSide<V>::create_map(const link::MapGeometry& geometry) {
   auto created = ReplanningSession<V>::create(vehicle_, std::move(grid).value(), session);
   if (!created) return created.error();
   session_.emplace(std::move(created).value());
+  running_checksum_ = link::map_checksum(session_->grid());  // once; then by the cells written
   return Ok{};
 }
 
@@ -43,14 +44,16 @@ void PlanningSide<V>::apply_tiles(MapChanges& changes) noexcept {
     if (t.vehicle_incarnation != vehicle_incarnation_) continue;  // an earlier vehicle's map
     const auto area = static_cast<std::size_t>(t.box.x1 - t.box.x0 + 1) *
                       static_cast<std::size_t>(t.box.y1 - t.box.y0 + 1);
+    running_checksum_ ^= link::cells_checksum(grid, t.box);  // out with the old cells
     changes.apply(grid, t.box, std::span<const Cell>(t.cells.data(), area));
+    running_checksum_ ^= link::cells_checksum(grid, t.box);  // in with the new
     map_sequence_ = t.map_sequence;
     map_in_sync_ = t.in_sync;
     batch_complete = t.last_of_batch;
     applied = true;
   }
   // The checksum describes a whole hand-over, not a map half way through one.
-  if (applied && batch_complete) map_checksum_ = link::map_checksum(grid);
+  if (applied && batch_complete) map_checksum_ = running_checksum_;
 }
 
 template <VehicleModel V>
@@ -132,7 +135,7 @@ CycleOutcome PlanningSide<V>::plan_cycle(std::int64_t start_ns, const MapChanges
     heading_y_m_ = goal.y_m();
   }
   if (exploring_) {
-    if (driver_->update(session.cycle(), session.grid(), session.plan_start_ns(), changes.applied,
+    if (driver_->update(session.cycle(), session.grid(), session.plan_start_ns(), changes,
                         session.lockstep())) {
       target_wanted_.signal();
     }

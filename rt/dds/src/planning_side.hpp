@@ -95,6 +95,7 @@ class PlanningSide {
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
   std::uint64_t map_sequence_ = 0;  // the last update applied
   std::uint64_t map_checksum_ = 0;  // of the map after the last complete hand-over
+  std::uint64_t running_checksum_ = 0;  // of the map as it is (link::map_checksum)
   bool map_in_sync_ = false;
   std::uint64_t vehicle_incarnation_ = 0;
 };

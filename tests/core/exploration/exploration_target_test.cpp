@@ -10,6 +10,8 @@
 #include <optional>
 #include <vector>
 
+#include "grip/common/random.hpp"
+
 namespace grip {
 namespace {
 
@@ -80,6 +82,50 @@ TEST_F(ExplorationTargetTest, ReadsOnlyTheMapCopiedIntoIt) {
   EXPECT_EQ(target->choose(1.0, 1.0, 2 * kSecond), ExplorationStatus::kComplete);
   EXPECT_EQ(target->status(), ExplorationStatus::kComplete);
   EXPECT_TRUE(target->target_cells().empty());
+}
+
+TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFromTheWholeMap) {
+  // Random sequences of map changes (sensed rectangles of free, obstacle or unknown space),
+  // each copied in by its box only (its clearance updated near them), against a target created
+  // from the whole map (clearance computed from scratch): the same status, groups, target and
+  // approach cells and rho, choice after choice. (No give-up clock runs out in 15 s.)
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE(seed);
+    Random rng(seed);
+    OccupancyGrid map = two_frontiers();
+    ExplorationTargetConfig config;
+    auto incremental = ExplorationTarget::create(map, config).value();
+    for (int round = 0; round < 15; ++round) {
+      CellBox written;
+      for (int write = 0, n = 1 + static_cast<int>(rng.below(3)); write < n; ++write) {
+        const int x0 = static_cast<int>(rng.below(75));
+        const int y0 = static_cast<int>(rng.below(35));
+        const CellBox box{x0, y0, x0 + static_cast<int>(rng.below(12)),
+                          y0 + static_cast<int>(rng.below(12))};
+        // Mostly free space, as a sensor sweep reveals it.
+        const std::uint64_t draw = rng.below(4);
+        const Cell value = draw < 2 ? Cell::kFree : static_cast<Cell>(draw - 1);
+        for (int y = box.y0; y <= std::min(box.y1, 39); ++y)
+          for (int x = box.x0; x <= std::min(box.x1, 79); ++x) map.set(x, y, value);
+        written.add(box);
+      }
+      incremental.copy_map(map, written);
+      auto whole = ExplorationTarget::create(map, config).value();
+      const std::int64_t now = round * kSecond;
+      const ExplorationStatus status = whole.choose(1.0, 1.0, now);
+      ASSERT_EQ(incremental.choose(1.0, 1.0, now), status) << "round " << round;
+      ASSERT_EQ(incremental.groups(), whole.groups());
+      ASSERT_EQ(sorted(incremental.target_cells()), sorted(whole.target_cells()));
+      ASSERT_EQ(sorted(incremental.approach_cells()), sorted(whole.approach_cells()));
+      if (status != ExplorationStatus::kTarget) continue;
+      for (std::uint32_t c = 0; c < map.cell_count(); ++c) {
+        const double x = map.cell_center_x(map.cell_x(c));
+        const double y = map.cell_center_y(map.cell_y(c));
+        ASSERT_EQ(incremental.rho().distance_m(x, y), whole.rho().distance_m(x, y))
+            << "round " << round << " at " << x << ", " << y;
+      }
+    }
+  }
 }
 
 TEST_F(ExplorationTargetTest, ATargetWithoutProgressIsGivenUpAfterTheConfiguredTime) {

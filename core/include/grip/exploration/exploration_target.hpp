@@ -5,9 +5,10 @@
 // weight), and when to set a group aside because the vehicle gets no closer to it.
 //
 // It works on its own copy of the map, so that a runtime can run it beside the planning thread
-// (clearance, the frontier wavefront and the grouping are whole-map passes of milliseconds) and
-// hand its result over, or inline where a run must be reproducible (lockstep). For the same
-// reason it also computes the planner's rho toward the approach cells (Planner::adopt_goal).
+// (the frontier wavefront and the grouping are whole-map passes of milliseconds) and hand its
+// result over, or inline where a run must be reproducible (lockstep). For the same reason it
+// also computes the planner's rho toward the approach cells (Planner::adopt_goal). The copy and
+// the clearance follow the map where it was written, not over the whole map.
 //
 // Giving up: a target the vehicle gets no closer to (its rho_A* down by progress_m) for
 // give_up_after_s of vehicle time is given up (FrontierMap::give_up), and the next choice takes
@@ -50,9 +51,13 @@ class ExplorationTarget {
   static Result<ExplorationTarget> create(const OccupancyGrid& like,
                                           const ExplorationTargetConfig& config);
 
-  // The map the next choose() reads: the caller copies its map in after it changed (asserts the
-  // same width, height and resolution). Not while choose() runs.
-  void copy_map(const OccupancyGrid& map) noexcept;
+  // The map the next choose() reads: the caller copies in the cells of its map it wrote since
+  // the last copy (`written`, clipped to the map), or all of them (asserts the same width,
+  // height and resolution). Not while choose() runs.
+  void copy_map(const OccupancyGrid& map, const CellBox& written) noexcept;
+  void copy_map(const OccupancyGrid& map) noexcept {
+    copy_map(map, CellBox{0, 0, map.width() - 1, map.height() - 1});
+  }
   // Chooses the target for a robot (its reference point) at (robot_x_m, robot_y_m) at vehicle
   // time now_ns. kTarget: approach_cells() and target_cells() describe it; kComplete: no
   // reachable frontier is left; kRobotOutsideGrid: no target.
@@ -87,7 +92,9 @@ class ExplorationTarget {
   ClearanceMap clearance_;
   FrontierMap frontiers_;
   DistanceField rho_;
-  bool map_changed_ = true;  // since the last choose(): clearance is recomputed
+  bool map_changed_ = true;  // since the last choose()
+  CellBox clearance_changed_;  // cells copied in that changed between free and not free
+  std::uint32_t clearance_exact_d2_;  // what frontiers and rho compare clearance with
   double target_x_m_ = 0.0;
   double target_y_m_ = 0.0;
   // Progress toward the target: its best rho_A* and when (vehicle time) it was reached.

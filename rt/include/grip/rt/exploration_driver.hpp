@@ -19,6 +19,7 @@
 #include "grip/common/result.hpp"
 #include "grip/exploration/exploration_target.hpp"
 #include "grip/exploration/path_selector.hpp"
+#include "grip/rt/map_changes.hpp"
 #include "grip/rt/replanning_cycle.hpp"
 
 namespace grip::rt {
@@ -43,9 +44,9 @@ class ExplorationDriver {
 
   // Planning thread, before every cycle while exploring. Real time: takes over a chosen target,
   // or requests a new one when it is due and returns true (wake the target thread). Lockstep:
-  // chooses a due target at once.
+  // chooses a due target at once. `changes`: what this cycle wrote into `grid`.
   bool update(ReplanningCycle<V>& cycle, const OccupancyGrid& grid, std::uint64_t plan_start_ns,
-              bool map_changed, bool lockstep) noexcept;
+              const MapChanges& changes, bool lockstep) noexcept;
   // Planning thread: chooses a target now and heads the cycle for it (the first target).
   void choose_now(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
                   std::uint64_t plan_start_ns) noexcept;
@@ -87,7 +88,8 @@ class ExplorationDriver {
   PathSelector selector_;
   bool requested_ = false;  // a target has been requested at least once
   std::uint32_t cycles_since_request_ = 0;
-  bool map_changed_since_request_ = true;  // target_ holds the map of its creation
+  // Where the grid was written since target_ last copied it in (the first copy: all of it).
+  CellBox written_since_request_{0, 0, OccupancyGrid::kMaxSideCells, OccupancyGrid::kMaxSideCells};
   bool explored_ = false;
   std::uint32_t groups_ = 0;
   std::uint32_t groups_given_up_ = 0;

@@ -13,6 +13,7 @@ namespace grip::rt {
 
 struct MapChanges {
   bool applied = false;   // some update was written
+  CellBox written;        // every cell written, whatever it held before
   CellBox newly_blocked;  // cells that stopped being free
   CellBox changed;        // cells that became free or stopped being free
 

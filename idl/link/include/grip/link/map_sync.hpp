@@ -21,9 +21,14 @@
 
 namespace grip::link {
 
-// FNV-1a (64 bit) over the geometry and the cells: equal maps have equal checksums; the planner
-// reports its map's in the status so that anyone can compare it with the mapper's.
+// Equal maps have equal checksums; the planner reports its map's in the status so that anyone
+// can compare it with the mapper's. FNV-1a (64 bit) over the geometry XOR, for every cell, a
+// 64-bit mix of its index and value: a write changes it at the cost of the cells written, not
+// of the map (cells_checksum).
 std::uint64_t map_checksum(const OccupancyGrid& grid) noexcept;
+// The cells of `box` (inside the grid): their share of map_checksum. XORed out of a checksum
+// before they are written and in after, it keeps the checksum of a changing map.
+std::uint64_t cells_checksum(const OccupancyGrid& grid, const CellBox& box) noexcept;
 
 // The largest square patch side: kMaxPatchCells = 256 x 256.
 inline constexpr int kPatchSideCells = 256;
