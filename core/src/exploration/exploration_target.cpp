@@ -63,23 +63,27 @@ void ExplorationTarget::copy_map(const OccupancyGrid& map, const CellBox& writte
       to[i] = from[i];
     }
   }
+  written_.add(box);
   map_changed_ = true;
 }
 
 ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
                                             std::int64_t now_ns) noexcept {
   const bool map_changed = std::exchange(map_changed_, false);
-  // Clearance near what changed only (created computed; exact as far as frontiers and rho ask).
+  // Clearance, frontiers and the robot's traversable set near what changed only (the clearance
+  // created computed; exact as far as frontiers and rho ask).
+  FrontierMap::MapChange change;
   if (map_changed) {
-    static_cast<void>(clearance_.update(map_, clearance_changed_, clearance_exact_d2_));
+    change.clearance_window = clearance_.update(map_, clearance_changed_, clearance_exact_d2_);
+    change.written = std::exchange(written_, CellBox{});
     clearance_changed_ = CellBox{};
   }
-  ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m);
+  ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m, change);
   if (status == ExplorationStatus::kComplete && frontiers_.given_up_groups() > 0 &&
       retries_left_ > 0) {
     --retries_left_;
     frontiers_.forgive_all();
-    status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m);
+    status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m, FrontierMap::MapChange{});
   }
   if (status != ExplorationStatus::kTarget) return status;
   rho_.compute(map_, clearance_, frontiers_.approach_cells(), config_.frontier.clearance_m);

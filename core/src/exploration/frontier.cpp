@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <string>
 
@@ -20,9 +21,8 @@ constexpr std::array<NamedValue<ExplorationStatus>, 3> kExplorationStatusNames{{
     {ExplorationStatus::kRobotOutsideGrid, "robot-outside-grid"},
 }};
 
-// label_ values besides group indices.
-constexpr std::uint32_t kNotFrontier = std::numeric_limits<std::uint32_t>::max();
-constexpr std::uint32_t kUnlabelled = kNotFrontier - 1;
+// label_ of a frontier cell not yet grouped.
+constexpr std::uint32_t kUnlabelled = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t kUnreachable = DistanceField::kUnreachable;
 
 }  // namespace
@@ -76,6 +76,7 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
       resolution_(resolution_m),
       config_(config),
       field_(std::move(field)),
+      frontier_bits_(field_.cell_count() / 64 + 1, 0),
       label_(field_.cell_count()),
       cells_(field_.cell_count()),
       // Frontier cells of different groups are not 8-adjacent: at most one group per 2x2 block.
@@ -100,7 +101,7 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
   std::stable_sort(window_.begin(), window_.end(),
                    [](const Offset& a, const Offset& b) { return a.cost < b.cost; });
   for (std::uint32_t c = 0; c < field_.cell_count(); ++c) {
-    GRIP_ASSERT(label_.push_back(kNotFrontier));
+    GRIP_ASSERT(label_.push_back(kUnlabelled));
     GRIP_ASSERT(stamp_.push_back(0));
     GRIP_ASSERT(given_up_.push_back(0));
   }
@@ -138,20 +139,46 @@ std::span<const std::uint32_t> FrontierMap::target_cells() const noexcept {
 
 ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                                       double robot_x_m, double robot_y_m) noexcept {
+  return update(grid, clearance, robot_x_m, robot_y_m, nullptr);
+}
+
+ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                                      double robot_x_m, double robot_y_m,
+                                      const MapChange& change) noexcept {
+  return update(grid, clearance, robot_x_m, robot_y_m, &change);
+}
+
+ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                                      double robot_x_m, double robot_y_m,
+                                      const MapChange* change) noexcept {
   GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
               grid.resolution() == resolution_);
+  // Without a full pass since the grid was last seen, a change cannot say what is stale.
+  if (!detected_) change = nullptr;
   target_ = kNoGroup;
   approach_.clear();
   int robot_cx = 0;
   int robot_cy = 0;
+  const CellBox whole{0, 0, width_ - 1, height_ - 1};
+  if (change == nullptr) {
+    detect(grid, whole);
+    field_.prepare(grid, clearance, config_.clearance_m);
+    detected_ = true;
+  } else {
+    // A cell's frontier status reads its 4 side neighbours.
+    const CellBox& w = change->written;
+    if (!w.empty()) detect(grid, CellBox{w.x0 - 1, w.y0 - 1, w.x1 + 1, w.y1 + 1});
+    // Traversability reads freedom and clearance: both changed within the clearance window.
+    const CellBox& window = change->clearance_window;
+    if (!window.empty()) field_.prepare(grid, clearance, config_.clearance_m, window);
+  }
   if (!grid.to_cell(robot_x_m, robot_y_m, robot_cx, robot_cy)) {
     groups_.clear();
     cells_.clear();
     status_ = ExplorationStatus::kRobotOutsideGrid;
     return status_;
   }
-  detect_and_group(grid);
-  field_.prepare(grid, clearance, config_.clearance_m);
+  group(grid);
   seed_robot_field(grid, robot_cx, robot_cy);
   field_.propagate(seeds_.span());
 
@@ -184,27 +211,45 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
   return status_;
 }
 
-void FrontierMap::detect_and_group(const OccupancyGrid& grid) noexcept {
+void FrontierMap::detect(const OccupancyGrid& grid, const CellBox& box) noexcept {
   const std::span<const Cell> map = grid.cells();
   const auto w = static_cast<std::uint32_t>(width_);
   const auto h = static_cast<std::uint32_t>(height_);
   const auto unknown = [&](std::uint32_t i) { return map[i] == Cell::kUnknown; };
-  for (std::uint32_t y = 0; y < h; ++y) {
-    for (std::uint32_t x = 0; x < w; ++x) {
+  const auto y0 = static_cast<std::uint32_t>(std::max(box.y0, 0));
+  const auto y1 = static_cast<std::uint32_t>(std::min(box.y1, height_ - 1));
+  const auto x0 = static_cast<std::uint32_t>(std::max(box.x0, 0));
+  const auto x1 = static_cast<std::uint32_t>(std::min(box.x1, width_ - 1));
+  for (std::uint32_t y = y0; y <= y1 && x0 <= x1; ++y) {
+    for (std::uint32_t x = x0; x <= x1; ++x) {
       const std::uint32_t i = y * w + x;
       const bool frontier =
           map[i] == Cell::kFree && ((x > 0 && unknown(i - 1)) || (x + 1 < w && unknown(i + 1)) ||
                                     (y > 0 && unknown(i - w)) || (y + 1 < h && unknown(i + w)));
-      label_[i] = frontier ? kUnlabelled : kNotFrontier;
+      const std::uint64_t bit = std::uint64_t{1} << (i & 63U);
+      frontier_bits_[i >> 6] = frontier ? frontier_bits_[i >> 6] | bit
+                                        : frontier_bits_[i >> 6] & ~bit;
     }
   }
+}
+
+void FrontierMap::group(const OccupancyGrid& grid) noexcept {
+  const auto w = static_cast<std::uint32_t>(width_);
+  // Calls f(cell) for every frontier cell in index order: a word of bits at a time.
+  const auto for_each_frontier_cell = [this](auto&& f) {
+    for (std::size_t word = 0; word < frontier_bits_.size(); ++word) {
+      for (std::uint64_t bits = frontier_bits_[word]; bits != 0; bits &= bits - 1) {
+        f(static_cast<std::uint32_t>(word * 64 + static_cast<std::size_t>(std::countr_zero(bits))));
+      }
+    }
+  };
+  for_each_frontier_cell([this](std::uint32_t c) { label_[c] = kUnlabelled; });
   // Flood fill, 8-connected, from each unlabelled cell in index order. cells_ is the queue:
   // what the fill appends from `first` on is the group.
   cells_.clear();
   groups_.clear();
-  const auto n = static_cast<std::uint32_t>(label_.size());
-  for (std::uint32_t start = 0; start < n; ++start) {
-    if (label_[start] != kUnlabelled) continue;
+  for_each_frontier_cell([&](std::uint32_t start) {
+    if (label_[start] != kUnlabelled) return;
     const auto g = static_cast<std::uint32_t>(groups_.size());
     FrontierGroup group;
     group.first = static_cast<std::uint32_t>(cells_.size());
@@ -218,7 +263,7 @@ void FrontierMap::detect_and_group(const OccupancyGrid& grid) noexcept {
         for (int nx = cx - 1; nx <= cx + 1; ++nx) {
           if (!grid.in_bounds(nx, ny)) continue;
           const std::uint32_t nc = grid.index(nx, ny);
-          if (label_[nc] != kUnlabelled) continue;
+          if (!is_frontier(nc) || label_[nc] != kUnlabelled) continue;
           label_[nc] = g;
           GRIP_ASSERT(cells_.push_back(nc));
         }
@@ -226,7 +271,7 @@ void FrontierMap::detect_and_group(const OccupancyGrid& grid) noexcept {
     }
     group.size = static_cast<std::uint32_t>(cells_.size()) - group.first;
     GRIP_ASSERT(groups_.push_back(group));  // sized for one group per 2x2 block
-  }
+  });
 }
 
 template <typename Visit>

@@ -156,7 +156,7 @@ std::uint32_t DistanceField::unpadded(std::uint32_t padded_index) const noexcept
 }
 
 void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* clearance,
-                               double inflation_m) noexcept {
+                               double inflation_m, const CellBox& window) noexcept {
   GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
               grid.resolution() == resolution_);
   GRIP_ASSERT(std::isfinite(inflation_m) && inflation_m >= 0.0);
@@ -165,21 +165,19 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
       clearance != nullptr ? clearance->squared_cells_at_least(inflation_m) : 0;
   // A clearance map updated in windows is exact only up to its bound (ClearanceMap::update).
   GRIP_ASSERT(clearance == nullptr || min_d2 <= clearance->exact_up_to());
+  const CellBox box{std::max(window.x0, 0), std::max(window.y0, 0),
+                    std::min(window.x1, width_ - 1), std::min(window.y1, height_ - 1)};
   const auto w = static_cast<std::size_t>(width_);
-  for (std::size_t y = 0; y < static_cast<std::size_t>(height_); ++y) {
+  for (int row = box.y0; row <= box.y1 && box.x0 <= box.x1; ++row) {
+    const auto y = static_cast<std::size_t>(row);
     std::uint8_t* out = traversable_.data() + (y + 1) * padded_width_ + 1;
     const Cell* in = cells.data() + y * w;
-    if (min_d2 == 0) {
-      for (std::size_t x = 0; x < w; ++x) {
-        out[x] = in[x] == Cell::kFree ? 1 : 0;
-      }
-    } else {
-      const std::uint32_t* d2 = clearance->squared_cells().data() + y * w;
-      for (std::size_t x = 0; x < w; ++x) {
-        out[x] = (in[x] == Cell::kFree && d2[x] >= min_d2) ? 1 : 0;
-      }
+    const std::uint32_t* d2 = min_d2 == 0 ? nullptr : clearance->squared_cells().data() + y * w;
+    for (auto x = static_cast<std::size_t>(box.x0); x <= static_cast<std::size_t>(box.x1); ++x) {
+      out[x] = (in[x] == Cell::kFree && (d2 == nullptr || d2[x] >= min_d2)) ? 1 : 0;
     }
   }
+  mask_ready_ = true;
   origin_x_m_ = grid.origin_x();
   origin_y_m_ = grid.origin_y();
   inflation_m_ = inflation_m;
@@ -189,9 +187,9 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
 void DistanceField::prepare(const OccupancyGrid& grid, double inflation_m) noexcept {
   if (inflation_m > 0.0) {
     clearance_.compute(grid);
-    build_mask(grid, &clearance_, inflation_m);
+    build_mask(grid, &clearance_, inflation_m, whole());
   } else {
-    build_mask(grid, nullptr, inflation_m);
+    build_mask(grid, nullptr, inflation_m, whole());
   }
 }
 
@@ -201,10 +199,20 @@ void DistanceField::prepare(const OccupancyGrid& grid, const ClearanceMap& clear
               clearance.resolution() == resolution_);
   if (inflation_m > 0.0) {
     GRIP_ASSERT(clearance.computed() && clearance.source_revision() == grid.revision());
-    build_mask(grid, &clearance, inflation_m);
+    build_mask(grid, &clearance, inflation_m, whole());
   } else {
-    build_mask(grid, nullptr, inflation_m);
+    build_mask(grid, nullptr, inflation_m, whole());
   }
+}
+
+void DistanceField::prepare(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                            double inflation_m, const CellBox& window) noexcept {
+  GRIP_ASSERT(clearance.width() == width_ && clearance.height() == height_ &&
+              clearance.resolution() == resolution_);
+  GRIP_ASSERT(mask_ready_ && inflation_m == inflation_m_);
+  GRIP_ASSERT(inflation_m == 0.0 ||
+              (clearance.computed() && clearance.source_revision() == grid.revision()));
+  build_mask(grid, inflation_m > 0.0 ? &clearance : nullptr, inflation_m, window);
 }
 
 std::uint32_t DistanceField::compute(const OccupancyGrid& grid,
@@ -222,7 +230,13 @@ std::uint32_t DistanceField::compute(const OccupancyGrid& grid, const ClearanceM
 }
 
 std::uint32_t DistanceField::propagate(std::span<const std::uint32_t> target_cells) noexcept {
-  std::fill(field_.cost.begin(), field_.cost.end(), kInf);
+  // Only what the last wavefront labelled is not kInf: every cell it labelled was settled (it
+  // ran until the queue was empty), so their index range bounds them.
+  if (reached_first_ <= reached_last_) {
+    std::fill(field_.cost.begin() + reached_first_, field_.cost.begin() + reached_last_ + 1, kInf);
+  }
+  reached_first_ = kNil;
+  reached_last_ = 0;
   std::fill(std::begin(field_.head), std::end(field_.head), kNil);
   std::uint32_t queued = 0;
   for (const std::uint32_t target : target_cells) {
@@ -242,8 +256,10 @@ std::uint32_t DistanceField::propagate(std::span<const std::uint32_t> target_cel
   std::uint32_t settled = 0;
   run_dial<kBuckets>(traversable_.data(), padded_width_, field_.next.data(), field_.prev.data(),
                      field_.head, PlainLabels{field_.cost.data()}, queued,
-                     [&settled](std::uint32_t, std::uint32_t) {
+                     [&](std::uint32_t p, std::uint32_t) {
                        ++settled;
+                       reached_first_ = std::min(reached_first_, p);
+                       reached_last_ = std::max(reached_last_, p);
                        return false;
                      });
   return settled;

@@ -155,6 +155,51 @@ TEST(DistanceFieldTest, MatchesTheReferenceWithInflation) {
   }
 }
 
+TEST(DistanceFieldTest, OneFieldReusedThroughMapChangesEqualsAFreshOneEveryTime) {
+  // One field kept through random map changes, its traversable set rebuilt only in the window
+  // the clearance update rewrote and its wavefront rerun from other targets each time (the
+  // last wavefront's labels cleared, not the whole field), against the reference.
+  Random random(13);
+  OccupancyGrid grid = random_grid(random, 40, 30, 0.05);
+  const double inflation = 0.15;
+  auto clearance = ClearanceMap::create_for(grid).value();
+  const std::uint32_t exact = clearance.squared_cells_at_least(inflation);
+  DistanceField field = make_field(grid);
+  field.prepare(grid, clearance, inflation);
+  for (int round = 0; round < 40; ++round) {
+    const int x0 = static_cast<int>(random.below(36));
+    const int y0 = static_cast<int>(random.below(26));
+    const CellBox box{x0, y0, x0 + static_cast<int>(random.below(6)),
+                      y0 + static_cast<int>(random.below(6))};
+    const Cell value = random.below(2) == 0 ? Cell::kFree : Cell::kObstacle;
+    CellBox changed;
+    for (int y = box.y0; y <= std::min(box.y1, 29); ++y) {
+      for (int x = box.x0; x <= std::min(box.x1, 39); ++x) {
+        if ((grid.at(grid.index(x, y)) == Cell::kFree) != (value == Cell::kFree)) {
+          changed.add(CellBox{x, y, x, y});
+        }
+        grid.set(x, y, value);
+      }
+    }
+    const CellBox window = clearance.update(grid, changed, exact);
+    field.prepare(grid, clearance, inflation, window);
+    const std::vector<std::uint32_t> targets = {random.below(grid.cell_count()),
+                                                random.below(grid.cell_count())};
+    field.propagate(targets);
+
+    const auto fresh_clearance = ClearanceMap::create_for(grid).value();
+    std::vector<bool> traversable(grid.cell_count());
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      traversable[i] = grid.at(i) == Cell::kFree && fresh_clearance.clearance_m(i) >= inflation;
+    }
+    const std::vector<std::uint32_t> expected = reference_costs(grid, traversable, targets);
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      ASSERT_EQ(field.traversable(i), traversable[i]) << "round " << round << " cell " << i;
+      ASSERT_EQ(field.cost_at(i), expected[i]) << "round " << round << " cell " << i;
+    }
+  }
+}
+
 TEST(DistanceFieldTest, StraightAndDiagonalRunsCostSeventyAndNinetyNinePerCell) {
   const OccupancyGrid grid = make_grid(20, 20, 0.1);
   DistanceField field = make_field(grid);

@@ -93,7 +93,8 @@ class ExplorationTarget {
   FrontierMap frontiers_;
   DistanceField rho_;
   bool map_changed_ = true;  // since the last choose()
-  CellBox clearance_changed_;  // cells copied in that changed between free and not free
+  CellBox written_;            // cells copied in since the last choose()
+  CellBox clearance_changed_;  // of those, the ones that changed between free and not free
   std::uint32_t clearance_exact_d2_;  // what frontiers and rho compare clearance with
   double target_x_m_ = 0.0;
   double target_y_m_ = 0.0;

@@ -104,6 +104,17 @@ class FrontierMap {
   // is not in the grid.
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                            double robot_x_m, double robot_y_m) noexcept;
+  // The same after `change` to the grid of the last update(): frontier cells are detected again
+  // and the robot's traversable set rebuilt only where it changed; grouping scans the frontier
+  // cells (a bit per cell), and the wavefront what the robot reaches. Equal to a full update().
+  struct MapChange {
+    CellBox written;  // every cell written since the last update()
+    // Where traversability can have changed: ClearanceMap::update's window (which holds every
+    // cell that changed between free and not free) since the last update().
+    CellBox clearance_window;
+  };
+  ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                           double robot_x_m, double robot_y_m, const MapChange& change) noexcept;
 
   ExplorationStatus status() const noexcept { return status_; }
   // Sets group `group` of the last update aside (until forgive_all()): a frontier the vehicle could
@@ -141,7 +152,13 @@ class FrontierMap {
 
   FrontierMap(int width_cells, int height_cells, double resolution_m, const FrontierConfig& config,
               DistanceField field);
-  void detect_and_group(const OccupancyGrid& grid) noexcept;
+  ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
+                           double robot_x_m, double robot_y_m, const MapChange* change) noexcept;
+  void detect(const OccupancyGrid& grid, const CellBox& box) noexcept;
+  void group(const OccupancyGrid& grid) noexcept;
+  bool is_frontier(std::uint32_t c) const noexcept {
+    return ((frontier_bits_[c >> 6] >> (c & 63U)) & 1U) != 0;
+  }
   void seed_robot_field(const OccupancyGrid& grid, int robot_cx, int robot_cy) noexcept;
   void measure_group(const OccupancyGrid& grid, FrontierGroup& group) noexcept;
   void collect_approach_cells(const OccupancyGrid& grid, const FrontierGroup& group) noexcept;
@@ -156,7 +173,9 @@ class FrontierMap {
   FrontierConfig config_;
   DistanceField field_;
   std::vector<Offset> window_;          // the approach disk, nearest offsets first
-  BoundedVector<std::uint32_t> label_;  // per cell: kNotFrontier, kUnlabelled or a group
+  std::vector<std::uint64_t> frontier_bits_;  // per cell: a frontier cell (row-major bits)
+  bool detected_ = false;                     // frontier_bits_ hold the last update's grid
+  BoundedVector<std::uint32_t> label_;  // per frontier cell: kUnlabelled or its group
   BoundedVector<std::uint32_t> cells_;  // frontier cells, grouped (the flood fill's queue)
   BoundedVector<FrontierGroup> groups_;
   BoundedVector<std::uint32_t> seeds_;     // the robot wavefront's start cells

@@ -12,7 +12,9 @@
 // cell otherwise.
 //
 // Queue: Dial's algorithm, a cyclic bucket queue of 100 buckets (> the largest edge cost)
-// threaded through per-cell next/prev arrays; O(cells) per wavefront. All buffers are allocated
+// threaded through per-cell next/prev arrays; O(cells reached) per wavefront, plus the index
+// range the previous one reached (cleared). The traversable set is rebuilt in O(cells), or
+// within the window of a change (the windowed prepare()). All buffers are allocated
 // by create(); compute(), the lookups and nearest_matching() never allocate and never throw.
 
 #include <cstdint>
@@ -56,6 +58,11 @@ class DistanceField {
   void prepare(const OccupancyGrid& grid, double inflation_m = 0.0) noexcept;
   void prepare(const OccupancyGrid& grid, const ClearanceMap& clearance,
                double inflation_m) noexcept;
+  // The same after a change confined to `window` since this field's last prepare() from this
+  // grid with this inflation: no cell outside it changed traversability (for inflation, the
+  // window ClearanceMap::update rewrote, with the cells written). Rebuilds the set there only.
+  void prepare(const OccupancyGrid& grid, const ClearanceMap& clearance, double inflation_m,
+               const CellBox& window) noexcept;
   std::uint32_t propagate(std::span<const std::uint32_t> target_cells) noexcept;
 
   // [m] path length from the cell containing (x_m, y_m) to the nearest target; +infinity when
@@ -106,8 +113,9 @@ class DistanceField {
   };
 
   DistanceField(int width_cells, int height_cells, double resolution_m, ClearanceMap clearance);
-  void build_mask(const OccupancyGrid& grid, const ClearanceMap* clearance,
-                  double inflation_m) noexcept;
+  void build_mask(const OccupancyGrid& grid, const ClearanceMap* clearance, double inflation_m,
+                  const CellBox& window) noexcept;
+  CellBox whole() const noexcept { return CellBox{0, 0, width_ - 1, height_ - 1}; }
   std::uint32_t padded(std::uint32_t cell_index) const noexcept;
   std::uint32_t unpadded(std::uint32_t padded_index) const noexcept;
 
@@ -122,6 +130,9 @@ class DistanceField {
   double inflation_m_ = 0.0;
   std::uint64_t source_revision_ = 0;
   std::vector<std::uint8_t> traversable_;  // padded
+  bool mask_ready_ = false;                // traversable_ built by a whole prepare()
+  std::uint32_t reached_first_ = kNil;     // padded index range the last wavefront labelled
+  std::uint32_t reached_last_ = 0;
   Search field_;                           // the wavefront's labels are the field
   Search scratch_;                         // nearest_matching's
   std::vector<std::uint32_t> stamp_;       // nearest_matching's generation per padded cell
