@@ -67,6 +67,22 @@ void ExplorationTarget::copy_map(const OccupancyGrid& map, const CellBox& writte
   map_changed_ = true;
 }
 
+// The fields rho_ holds go to the planner and come back (Planner::adopt_goal swaps them): one
+// of ours (tagged 1 or 2), still built from this map, is rebuilt only where traversability
+// changed since; any other is built whole and tagged apart from the one the planner holds.
+void ExplorationTarget::prepare_rho() noexcept {
+  std::uint32_t tag = rho_.tag();
+  if ((tag == 1 || tag == 2) && rho_.mask_source() == &map_) {
+    rho_.prepare(map_, clearance_, config_.frontier.clearance_m, rho_windows_[tag - 1]);
+  } else {
+    tag = last_rho_tag_ == 1 ? 2 : 1;
+    rho_.set_tag(tag);
+    rho_.prepare(map_, clearance_, config_.frontier.clearance_m);
+  }
+  rho_windows_[tag - 1] = CellBox{};
+  last_rho_tag_ = tag;
+}
+
 ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
                                             std::int64_t now_ns) noexcept {
   const bool map_changed = std::exchange(map_changed_, false);
@@ -77,6 +93,7 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
     change.clearance_window = clearance_.update(map_, clearance_changed_, clearance_exact_d2_);
     change.written = std::exchange(written_, CellBox{});
     clearance_changed_ = CellBox{};
+    for (CellBox& window : rho_windows_) window.add(change.clearance_window);
   }
   ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m, change);
   if (status == ExplorationStatus::kComplete && frontiers_.given_up_groups() > 0 &&
@@ -86,7 +103,8 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
     status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m, FrontierMap::MapChange{});
   }
   if (status != ExplorationStatus::kTarget) return status;
-  rho_.compute(map_, clearance_, frontiers_.approach_cells(), config_.frontier.clearance_m);
+  prepare_rho();
+  rho_.propagate(frontiers_.approach_cells());
   const FrontierGroup& group = frontiers_.groups()[frontiers_.target()];
   if (group.nearest_cell != FrontierGroup::kNoCell) {
     const double x = map_.cell_center_x(map_.cell_x(group.nearest_cell));

@@ -177,7 +177,7 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
       out[x] = (in[x] == Cell::kFree && (d2 == nullptr || d2[x] >= min_d2)) ? 1 : 0;
     }
   }
-  mask_ready_ = true;
+  mask_source_ = &grid;
   origin_x_m_ = grid.origin_x();
   origin_y_m_ = grid.origin_y();
   inflation_m_ = inflation_m;
@@ -209,7 +209,7 @@ void DistanceField::prepare(const OccupancyGrid& grid, const ClearanceMap& clear
                             double inflation_m, const CellBox& window) noexcept {
   GRIP_ASSERT(clearance.width() == width_ && clearance.height() == height_ &&
               clearance.resolution() == resolution_);
-  GRIP_ASSERT(mask_ready_ && inflation_m == inflation_m_);
+  GRIP_ASSERT(mask_source_ == &grid && inflation_m == inflation_m_);
   GRIP_ASSERT(inflation_m == 0.0 ||
               (clearance.computed() && clearance.source_revision() == grid.revision()));
   build_mask(grid, inflation_m > 0.0 ? &clearance : nullptr, inflation_m, window);

@@ -88,13 +88,17 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
   // Random sequences of map changes (sensed rectangles of free, obstacle or unknown space),
   // each copied in by its box only (its clearance updated near them), against a target created
   // from the whole map (clearance computed from scratch): the same status, groups, target and
-  // approach cells and rho, choice after choice. (No give-up clock runs out in 15 s.)
+  // approach cells and rho, choice after choice. (No give-up clock runs out in 15 s.) Its rho
+  // goes to a planner and comes back as the planner's adopt_goal swaps them, now and then
+  // recomputed by the planner on a map of its own.
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     SCOPED_TRACE(seed);
     Random rng(seed);
     OccupancyGrid map = two_frontiers();
     ExplorationTargetConfig config;
     auto incremental = ExplorationTarget::create(map, config).value();
+    const OccupancyGrid planners_map = map;
+    DistanceField planners_rho = DistanceField::create(80, 40, 0.1).value();
     for (int round = 0; round < 15; ++round) {
       CellBox written;
       for (int write = 0, n = 1 + static_cast<int>(rng.below(3)); write < n; ++write) {
@@ -124,6 +128,11 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
         ASSERT_EQ(incremental.rho().distance_m(x, y), whole.rho().distance_m(x, y))
             << "round " << round << " at " << x << ", " << y;
       }
+      if (rng.below(4) == 0) {
+        planners_rho.compute(planners_map, incremental.approach_cells(),
+                             config.frontier.clearance_m);
+      }
+      std::swap(planners_rho, incremental.rho());
     }
   }
 }

@@ -86,6 +86,7 @@ class ExplorationTarget {
  private:
   ExplorationTarget(const ExplorationTargetConfig& config, OccupancyGrid map,
                     ClearanceMap clearance, FrontierMap frontiers, DistanceField rho);
+  void prepare_rho() noexcept;
 
   ExplorationTargetConfig config_;
   OccupancyGrid map_;
@@ -96,6 +97,10 @@ class ExplorationTarget {
   CellBox written_;            // cells copied in since the last choose()
   CellBox clearance_changed_;  // of those, the ones that changed between free and not free
   std::uint32_t clearance_exact_d2_;  // what frontiers and rho compare clearance with
+  // Per rho field of ours (DistanceField::tag() 1 and 2): where traversability can have changed
+  // since its traversable set was built; the tag of the one built last.
+  CellBox rho_windows_[2];
+  std::uint32_t last_rho_tag_ = 0;
   double target_x_m_ = 0.0;
   double target_y_m_ = 0.0;
   // Progress toward the target: its best rho_A* and when (vehicle time) it was reached.

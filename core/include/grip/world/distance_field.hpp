@@ -59,8 +59,9 @@ class DistanceField {
   void prepare(const OccupancyGrid& grid, const ClearanceMap& clearance,
                double inflation_m) noexcept;
   // The same after a change confined to `window` since this field's last prepare() from this
-  // grid with this inflation: no cell outside it changed traversability (for inflation, the
-  // window ClearanceMap::update rewrote, with the cells written). Rebuilds the set there only.
+  // grid (asserted: mask_source()) with this inflation: no cell outside it changed
+  // traversability (with inflation: the windows ClearanceMap::update rewrote since). Rebuilds the
+  // set there only.
   void prepare(const OccupancyGrid& grid, const ClearanceMap& clearance, double inflation_m,
                const CellBox& window) noexcept;
   std::uint32_t propagate(std::span<const std::uint32_t> target_cells) noexcept;
@@ -98,6 +99,12 @@ class DistanceField {
   // The inflation and grid revision of the last prepare()/compute().
   double inflation() const noexcept { return inflation_m_; }
   std::uint64_t source_revision() const noexcept { return source_revision_; }
+  // The grid the traversable set was last built from (nullptr before), and a tag of the
+  // caller's that moves with the field: a caller that hands fields to another and gets others
+  // back (Planner::adopt_goal) tells its own, and what they were built from, apart.
+  const OccupancyGrid* mask_source() const noexcept { return mask_source_; }
+  std::uint32_t tag() const noexcept { return tag_; }
+  void set_tag(std::uint32_t tag) noexcept { tag_ = tag; }
 
  private:
   static constexpr std::uint32_t kBuckets = 100;  // > kDiagonalCost
@@ -130,7 +137,8 @@ class DistanceField {
   double inflation_m_ = 0.0;
   std::uint64_t source_revision_ = 0;
   std::vector<std::uint8_t> traversable_;  // padded
-  bool mask_ready_ = false;                // traversable_ built by a whole prepare()
+  const OccupancyGrid* mask_source_ = nullptr;  // traversable_ built from it, whole first
+  std::uint32_t tag_ = 0;
   std::uint32_t reached_first_ = kNil;     // padded index range the last wavefront labelled
   std::uint32_t reached_last_ = 0;
   Search field_;                           // the wavefront's labels are the field
