@@ -278,6 +278,7 @@ void register_bench_command(CLI::App& app) {
   register_bench_explore_command(*bench);
   register_bench_faults_command(*bench);
   register_bench_ompl_command(*bench);
+  register_bench_scale_command(*bench);
 }
 
 }  // namespace grip::tools

@@ -24,11 +24,12 @@ void register_goal_command(CLI::App& app);           // a goal for the planner
 void register_params_command(CLI::App& app);         // a vehicle's parameter file, completed
 void register_keys_command(CLI::App& app);           // DDS Security keys (`grip keys init`)
 void register_fault_delayer_command(CLI::App& app);  // hidden: the delay of `grip bench faults`
-// Benchmarks registered on `bench` besides `paper`: `dds`, `explore`, `faults`, and `ompl`
-// (tools/ompl; a stub there when built without OMPL).
+// Benchmarks registered on `bench` besides `paper`: `dds`, `explore`, `faults`, `ompl`
+// (tools/ompl; a stub there when built without OMPL) and `scale`.
 void register_bench_dds_command(CLI::App& bench);
 void register_bench_explore_command(CLI::App& bench);
 void register_bench_faults_command(CLI::App& bench);
 void register_bench_ompl_command(CLI::App& bench);
+void register_bench_scale_command(CLI::App& bench);
 
 }  // namespace grip::tools

@@ -5,6 +5,7 @@
 // Both take the world (a built-in scene or a map file), the robot, the time scale, the limits,
 // and write the same report and picture.
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -47,6 +48,7 @@ struct ExploreOptions {
   std::string scene = "rooms";
   std::string map;
   std::string start;
+  int movingai_subdivision = sim::MapLoadOptions{}.movingai_subdivision;
   ParamsOptions params{"dd-vel"};
   std::uint64_t seed = 1;
   double time_scale = kDefaultTimeScale;
@@ -76,7 +78,9 @@ Result<World> load_world(const ExploreOptions& o, const params::GripParams& p) {
     if (!o.start.empty()) return invalid_argument("--start needs --map (scenes have their start)");
     return world;
   }
-  auto loaded = sim::load_map(o.map);
+  sim::MapLoadOptions load;
+  load.movingai_subdivision = o.movingai_subdivision;
+  auto loaded = sim::load_map(o.map, load);
   if (!loaded) return loaded.error();
   // The chassis, and the collision margin the planner checks the start with (for its cycle's
   // integration step).
@@ -231,6 +235,13 @@ int finish(const ExploreOptions& o, const params::GripParams& p, const World& wo
                          {"policy_fallback_reason", planner->policy_fallback},
                          {"publish_thread_policy", planner->publish_policy}};
     }
+    if (planner != nullptr) {
+      j["planner_startup"] = {{"map_sync_s", planner->map_sync_s},
+                              {"planning_s", planner->startup_s}};
+    }
+    // The whole process's (simulator, planner, DDS): what a map of this size costs in memory.
+    rusage usage{};
+    if (getrusage(RUSAGE_SELF, &usage) == 0) j["peak_rss_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
     if (!link.is_null()) j["link"] = link;
     if (!write_report(command, o.report, std::move(j), 1)) return 1;
   }
@@ -442,6 +453,10 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
   cmd->add_option("--map", o.map,
                   "A MovingAI .map or ROS map_server .yaml file instead of a scene");
   cmd->add_option("--start", o.start, "X,Y[,THETA] with --map (default: chosen)");
+  cmd->add_option("--movingai-subdivision", o.movingai_subdivision,
+                  "Grid cells per side of a MovingAI map cell (1 m): the map's resolution")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   add_vehicle_options(*cmd, o.params);
   cmd->add_option("--seed", o.seed, "Planner seed")->capture_default_str();
   cmd->add_option("--time-scale", o.time_scale, "Simulated seconds per wall-clock second")

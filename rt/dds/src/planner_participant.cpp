@@ -200,6 +200,9 @@ class PlannerParticipantFor final : public PlannerParticipant {
   std::unique_ptr<PlanningSide<V>> planning_;
   std::atomic<bool> target_stop_{false};
   VehicleSample first_state_;  // the state start-up planned from
+  // The first start-up's: from its beginning to the map in sync, and to planning.
+  std::int64_t map_sync_ns_ = -1;
+  std::int64_t startup_ns_ = -1;
   LivenessBeat alive_;
   std::thread receive_thread_;
   std::thread publish_thread_;
@@ -331,6 +334,10 @@ Status PlannerParticipantFor<V>::start_up() {
       const Status s = planning_->start(*state, goal);
       if (s.ok()) {
         first_state_ = *state;
+        if (startup_ns_ < 0) {
+          map_sync_ns_ = synced_at - started;
+          startup_ns_ = platform::now_ns() - started;
+        }
         return Ok{};
       }
       refusal = s.error().message;  // e.g. the start is not known free yet
@@ -509,6 +516,8 @@ PlannerParticipantReport PlannerParticipantFor<V>::final_report(PlannerParticipa
   report.map_heals = counters.map_heals.load();
   report.vehicle_losses = counters.vehicle_losses.load();
   report.vehicle_restarts = counters.vehicle_restarts.load();
+  report.map_sync_s = static_cast<double>(map_sync_ns_) * 1e-9;
+  report.startup_s = static_cast<double>(startup_ns_) * 1e-9;
   planning_->fill_report(report);
   return report;
 }

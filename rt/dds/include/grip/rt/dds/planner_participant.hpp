@@ -132,6 +132,10 @@ struct PlannerParticipantReport {
   // Times a new vehicle incarnation replaced the one planned for (a restarted vehicle side);
   // the report's other figures are of the planning for the last one.
   std::uint64_t vehicle_restarts = 0;
+  // [s] From the beginning of start-up (run()) to the map first in sync, and to planning
+  // (sizing the planner included): a large map's cost before the first plan.
+  double map_sync_s = 0.0;
+  double startup_s = 0.0;
   bool explored = false;      // exploration ended: no reachable frontier remained
   std::uint64_t resyncs = 0;  // fresh trees from where a vehicle off the tree will be
   bool allocations_counted = false;

@@ -1,0 +1,66 @@
+// `grip bench scale` explores one map at several resolutions for real (here: the small room at
+// 10 and 20 cells a metre, briefly, in lockstep): a row per resolution with its cell count, the
+// planner's start-up, memory and every cycle phase; and bad options are refused.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "grip_command.hpp"
+#include "small_room_map.hpp"
+
+namespace {
+
+using grip::testing::CommandRun;
+
+TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
+  const std::string out_dir = ::testing::TempDir() + "grip-bench-scale";
+  const std::string json = ::testing::TempDir() + "grip-bench-scale.json";
+  std::filesystem::remove_all(out_dir);
+  const CommandRun r = grip::testing::run_grip(
+      "bench scale --map " + grip::testing::write_small_room_map("grip-bench-scale-room.map") +
+      " --subdivisions 10,20 --max-sim-time 10 --out " + out_dir + " --json " + json);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j.at("runs").size(), 2U) << r.output;
+  EXPECT_EQ(j.at("mode"), "lockstep");
+  const auto& coarse = j.at("runs")[0];
+  const auto& fine = j.at("runs")[1];
+  EXPECT_EQ(coarse.at("cells").get<int>(), 100 * 100);
+  EXPECT_EQ(fine.at("cells").get<int>(), 200 * 200);
+  for (const auto& run : j.at("runs")) {
+    EXPECT_EQ(run.at("collisions").get<int>(), 0) << run.dump();
+    EXPECT_EQ(run.at("cycles").get<int>(), 201) << run.dump();  // 10 s at 0.05 s, and the first
+    const auto& startup = run.at("planner_startup");
+    EXPECT_GT(startup.at("map_sync_s").get<double>(), 0.0) << run.dump();
+    EXPECT_GE(startup.at("planning_s").get<double>(), startup.at("map_sync_s").get<double>());
+    EXPECT_GT(run.at("peak_rss_mb").get<double>(), 1.0) << run.dump();
+    for (const char* phase : {"prepare_ms", "retain_ms", "grow_ms", "commit_ms", "compute_ms"}) {
+      const auto& p = run.at(phase);
+      EXPECT_LE(p.at("p50").get<double>(), p.at("p99").get<double>()) << phase;
+      EXPECT_LE(p.at("p99").get<double>(), p.at("max").get<double>()) << phase;
+    }
+    EXPECT_GT(run.at("compute_ms").at("p50").get<double>(), 0.0);
+  }
+  EXPECT_NE(r.output.find("   10      10000"), std::string::npos) << r.output;
+}
+
+TEST(BenchScaleCommand, BadOptionsAreRefusedNamingWhatIsWrong) {
+  CommandRun r = grip::testing::run_grip("bench scale");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--map"), std::string::npos) << r.output;
+  r = grip::testing::run_grip("bench scale --map /nonexistent/grip.map");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("/nonexistent/grip.map"), std::string::npos) << r.output;
+  r = grip::testing::run_grip("bench scale --map " +
+                              grip::testing::write_small_room_map("grip-bench-scale-bad.map") +
+                              " --subdivisions 0");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--subdivisions"), std::string::npos) << r.output;
+}
+
+}  // namespace

@@ -1,0 +1,261 @@
+// `grip bench scale`: how grip's cost grows with the map. The same exploration (one vehicle,
+// one seed, a fixed simulated time) on one MovingAI map at several resolutions, from about
+// 0.1 M to 16 M cells, each run a private `grip explore` child process with its report and
+// cycle trace kept in one directory. A row per resolution: cells, the planner's start-up (map
+// in sync, planning), the process's peak memory, and every cycle phase's p50 / p99 / max.
+// A benchmark: it measures and prints, it asserts nothing.
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "child.hpp"
+#include "commands.hpp"
+#include "grip/sim/map_file.hpp"
+#include "report_file.hpp"
+#include "stats.hpp"
+#include "vehicle_arg.hpp"
+
+namespace grip::tools {
+
+namespace {
+
+struct BenchScaleOptions {
+  std::string map;
+  // 12.5 cm to 1.6 cm cells (coarser ones do not leave the frontier approach its range).
+  std::vector<int> subdivisions{8, 10, 20, 40, 62};
+  std::string robot = "dd-vel";
+  double max_sim_time_s = 60.0;
+  bool real_time = false;  // time scale 1 instead of lockstep
+  std::string out_dir = "bench-scale";
+  std::string json;
+};
+
+// The cycle trace's phases (tools/grip/cycle_trace.cpp), in microseconds.
+constexpr const char* kPhases[] = {"prepare_us", "retain_us", "grow_us", "commit_us",
+                                   "compute_us"};
+
+struct Run {
+  int subdivision = 0;
+  std::string stem;
+  int exit_status = -1;
+  nlohmann::json report;                  // empty when the run left none
+  std::uint64_t cells = 0;                // of the grid
+  std::vector<std::vector<double>> phases;  // per kPhases entry, one sample per cycle
+  std::uint64_t missed = 0;
+};
+
+// Reads the cycle trace's phase columns and its missed column; false when it is unreadable.
+bool read_trace(const std::string& path, Run& r) {
+  std::ifstream in(path);
+  std::string line;
+  if (!in || !std::getline(in, line)) return false;
+  std::vector<std::string> header;
+  std::stringstream names(line);
+  for (std::string name; std::getline(names, name, ',');) header.push_back(name);
+  std::vector<std::size_t> columns;
+  for (const char* phase : kPhases) {
+    const auto it = std::find(header.begin(), header.end(), phase);
+    if (it == header.end()) return false;
+    columns.push_back(static_cast<std::size_t>(it - header.begin()));
+  }
+  const auto missed = std::find(header.begin(), header.end(), "missed");
+  r.phases.assign(std::size(kPhases), {});
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream values(line);
+    for (std::string v; std::getline(values, v, ',');) fields.push_back(v);
+    if (fields.size() < header.size()) continue;
+    for (std::size_t p = 0; p < columns.size(); ++p) {
+      r.phases[p].push_back(std::strtod(fields[columns[p]].c_str(), nullptr));
+    }
+    if (missed != header.end() && fields[static_cast<std::size_t>(missed - header.begin())] == "1") {
+      ++r.missed;
+    }
+  }
+  return true;
+}
+
+std::vector<std::string> explore_args(const BenchScaleOptions& o, const Run& r,
+                                      const std::string& self) {
+  std::vector<std::string> args{self,
+                                "explore",
+                                "--map",
+                                o.map,
+                                "--movingai-subdivision",
+                                std::to_string(r.subdivision),
+                                vehicle_args(o.robot)[0],
+                                o.robot,
+                                "--max-sim-time",
+                                std::to_string(o.max_sim_time_s),
+                                "--private",
+                                "--report",
+                                o.out_dir + "/" + r.stem + ".json",
+                                "--cycle-trace",
+                                o.out_dir + "/" + r.stem + ".cycles.csv"};
+  if (o.real_time) {
+    args.insert(args.end(), {"--time-scale", "1"});
+  } else {
+    args.emplace_back("--lockstep");
+  }
+  return args;
+}
+
+double phase_ms(const Run& r, std::size_t phase, double q) {
+  if (r.phases.empty() || r.phases[phase].empty()) return NAN;
+  return percentile(r.phases[phase], q) / 1000.0;
+}
+
+void print_table(const std::vector<Run>& runs) {
+  std::cout << "\n"
+            << std::right << std::setw(5) << "sub" << std::setw(11) << "cells" << std::setw(9)
+            << "sync s" << std::setw(11) << "planning s" << std::setw(9) << "rss MB"
+            << std::setw(8) << "cycles" << std::setw(7) << "missed";
+  for (const char* phase : kPhases) {
+    std::string name(phase);
+    name.resize(name.size() - 3);
+    std::cout << std::setw(24) << name + " p50/p99/max ms";
+  }
+  std::cout << "\n";
+  for (const Run& r : runs) {
+    const nlohmann::json& j = r.report;
+    const nlohmann::json startup = j.is_null() ? nlohmann::json() : j.value("planner_startup", nlohmann::json());
+    std::cout << std::fixed << std::setw(5) << r.subdivision << std::setw(11) << r.cells
+              << std::setprecision(2) << std::setw(9)
+              << (startup.is_null() ? NAN : startup.value("map_sync_s", NAN)) << std::setw(11)
+              << (startup.is_null() ? NAN : startup.value("planning_s", NAN))
+              << std::setprecision(0) << std::setw(9)
+              << (j.is_null() ? NAN : j.value("peak_rss_mb", NAN)) << std::setw(8)
+              << (j.is_null() ? 0 : j.value("cycles", 0)) << std::setw(7) << r.missed;
+    for (std::size_t p = 0; p < std::size(kPhases); ++p) {
+      std::ostringstream cell;
+      cell << std::fixed << std::setprecision(2) << phase_ms(r, p, 0.5) << "/" << phase_ms(r, p, 0.99)
+           << "/" << phase_ms(r, p, 1.0);
+      std::cout << std::setw(24) << cell.str();
+    }
+    if (j.is_null()) std::cout << "  (no report: exit " << r.exit_status << ")";
+    std::cout << "\n";
+  }
+}
+
+int run_bench(const BenchScaleOptions& o) {
+  const char* command = "grip bench scale";
+  auto self = self_executable();
+  if (!self) {
+    std::cerr << command << ": " << self.error().message << "\n";
+    return 1;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(o.out_dir, ec);
+  if (ec) {
+    std::cerr << command << ": cannot create " << o.out_dir << ": " << ec.message() << "\n";
+    return 2;
+  }
+  std::vector<Run> runs;
+  for (const int s : o.subdivisions) {
+    sim::MapLoadOptions load;
+    load.movingai_subdivision = s;
+    auto loaded = sim::load_movingai_map(o.map, load);  // refuses a bad file before any run
+    if (!loaded) {
+      std::cerr << command << ": " << loaded.error().message << "\n";
+      return 2;
+    }
+    Run r;
+    r.subdivision = s;
+    r.cells = loaded->grid.cell_count();
+    r.stem = std::filesystem::path(o.map).stem().string() + "-x" + std::to_string(s);
+    runs.push_back(std::move(r));
+  }
+  std::cout << command << ": " << o.map << " at " << runs.size() << " resolutions, "
+            << vehicle_label(o.robot) << ", " << (o.real_time ? "real time" : "lockstep") << ", "
+            << o.max_sim_time_s << " s simulated each; reports in " << o.out_dir << "/"
+            << std::endl;
+  for (Run& r : runs) {
+    const std::string report = o.out_dir + "/" + r.stem + ".json";
+    std::filesystem::remove(report, ec);
+    auto child = Child::spawn(explore_args(o, r, *self), {}, o.out_dir + "/" + r.stem + ".log", true);
+    if (child) r.exit_status = child->wait();
+    try {
+      std::ifstream in(report);
+      if (in) r.report = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception&) {
+      r.report = nullptr;
+    }
+    if (!read_trace(o.out_dir + "/" + r.stem + ".cycles.csv", r)) r.phases.clear();
+    std::cout << "  x" << r.subdivision << " (" << r.cells << " cells): "
+              << (r.report.is_null() ? "no report" : r.report.value("result", "?"))
+              << (child ? "" : " (" + child.error().message + ")") << std::endl;
+  }
+  print_table(runs);
+  if (!o.json.empty()) {
+    nlohmann::json j;
+    j["map"] = o.map;
+    j["robot"] = vehicle_label(o.robot);
+    j["mode"] = o.real_time ? "real time" : "lockstep";
+    j["max_sim_time_s"] = o.max_sim_time_s;
+    nlohmann::json rows = nlohmann::json::array();
+    for (const Run& r : runs) {
+      nlohmann::json row{{"subdivision", r.subdivision},
+                         {"cells", r.cells},
+                         {"exit_status", r.exit_status},
+                         {"missed", r.missed},
+                         {"report", o.out_dir + "/" + r.stem + ".json"}};
+      if (!r.report.is_null()) {
+        for (const char* key : {"result", "coverage", "collisions", "cycles", "wall_time_s",
+                                "peak_rss_mb", "planner_startup"}) {
+          if (r.report.contains(key)) row[key] = r.report.at(key);
+        }
+      }
+      for (std::size_t p = 0; p < std::size(kPhases) && !r.phases.empty(); ++p) {
+        std::string name(kPhases[p]);
+        name.resize(name.size() - 3);
+        row[name + "_ms"] = {{"p50", phase_ms(r, p, 0.5)},
+                             {"p99", phase_ms(r, p, 0.99)},
+                             {"max", phase_ms(r, p, 1.0)}};
+      }
+      rows.push_back(row);
+    }
+    j["runs"] = rows;
+    if (!write_report(command, o.json, std::move(j), 1)) return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_bench_scale_command(CLI::App& bench) {
+  auto o = std::make_shared<BenchScaleOptions>();
+  CLI::App* cmd = bench.add_subcommand(
+      "scale", "How the cost grows with the map: one exploration at several resolutions");
+  cmd->add_option("--map", o->map, "A MovingAI .map file (its cells are 1 m)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--subdivisions", o->subdivisions,
+                  "Grid cells per MovingAI cell side, a run each (cells grow as its square)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--robot", o->robot, "dd-vel, dd-accel, car, or a parameter file (.yaml)")
+      ->check(CLI::IsMember({"dd-vel", "dd-accel", "car"}) | CLI::ExistingFile)
+      ->capture_default_str();
+  cmd->add_option("--max-sim-time", o->max_sim_time_s, "Per run [s of simulated time]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--real-time", o->real_time, "Real time at time scale 1 instead of lockstep");
+  cmd->add_option("--out", o->out_dir, "Directory for every run's report, log and cycle trace")
+      ->capture_default_str();
+  cmd->add_option("--json", o->json, "Write the table and every run's figures here");
+  cmd->callback([o]() {
+    if (const int rc = run_bench(*o); rc != 0) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace grip::tools
