@@ -25,6 +25,15 @@ constexpr std::array<NamedValue<ExplorationStatus>, 3> kExplorationStatusNames{{
 constexpr std::uint32_t kUnlabelled = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t kUnreachable = DistanceField::kUnreachable;
 
+// The approach window's half side [cells], and the cells of a square of that half side.
+int approach_reach(const FrontierConfig& config, double resolution_m) {
+  return floor_to_cell(config.approach_range_m / resolution_m, 0, OccupancyGrid::kMaxSideCells);
+}
+std::size_t square_cells(int reach) {
+  const auto side = static_cast<std::size_t>(2 * reach + 1);
+  return side * side;
+}
+
 }  // namespace
 
 std::string_view exploration_status_name(ExplorationStatus s) noexcept {
@@ -82,12 +91,12 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
       // Frontier cells of different groups are not 8-adjacent: at most one group per 2x2 block.
       groups_(static_cast<std::size_t>((width_cells + 1) / 2) *
               static_cast<std::size_t>((height_cells + 1) / 2)),
-      seeds_(field_.cell_count()),
+      // The robot's cell and the chassis cells of its approach window (a square bounds it).
+      seeds_(square_cells(approach_reach(config, resolution_m)) + 1),
       approach_(field_.cell_count()),
       stamp_(field_.cell_count()),
       given_up_(field_.cell_count()) {
-  const int reach =
-      floor_to_cell(config.approach_range_m / resolution_m, 0, OccupancyGrid::kMaxSideCells);
+  const int reach = approach_reach(config, resolution_m);
   const double reach_cells = config.approach_range_m / resolution_m;
   for (int dy = -reach; dy <= reach; ++dy) {
     for (int dx = -reach; dx <= reach; ++dx) {

@@ -18,21 +18,6 @@ struct PlainLabels {
   void set(std::uint32_t p, std::uint32_t c) const noexcept { cost[p] = c; }
 };
 
-// Labels of nearest_matching: valid only where stamped with the current generation, so a query
-// never has to clear the whole array.
-struct StampedLabels {
-  std::uint32_t* cost;
-  std::uint32_t* stamp;
-  std::uint32_t generation;
-  std::uint32_t get(std::uint32_t p) const noexcept {
-    return stamp[p] == generation ? cost[p] : kInf;
-  }
-  void set(std::uint32_t p, std::uint32_t c) const noexcept {
-    cost[p] = c;
-    stamp[p] = generation;
-  }
-};
-
 // Dial's algorithm over the padded grid. The queue holds `queued` seeds at cost 0 (already
 // labelled and linked into bucket 0). on_settle(p, cost) is called for each settled cell in
 // nondecreasing cost; returning true stops the search.
@@ -122,13 +107,10 @@ DistanceField::DistanceField(int width_cells, int height_cells, double resolutio
   const std::size_t padded_cells =
       static_cast<std::size_t>(width_cells + 2) * static_cast<std::size_t>(height_cells + 2);
   traversable_.assign(padded_cells, 0);
-  for (Search* search : {&field_, &scratch_}) {
-    search->cost.assign(padded_cells, kInf);
-    search->next.assign(padded_cells, kNil);
-    search->prev.assign(padded_cells, kNil);
-    std::fill(std::begin(search->head), std::end(search->head), kNil);
-  }
-  stamp_.assign(padded_cells, 0);
+  field_.cost.assign(padded_cells, kInf);
+  field_.next.assign(padded_cells, kNil);
+  field_.prev.assign(padded_cells, kNil);
+  std::fill(std::begin(field_.head), std::end(field_.head), kNil);
 }
 
 Result<DistanceField> DistanceField::create(int width_cells, int height_cells,
@@ -290,42 +272,6 @@ double DistanceField::distance_m(double x_m, double y_m) const noexcept {
       (static_cast<std::uint32_t>(v) + 1) * padded_width_ + static_cast<std::uint32_t>(u) + 1;
   const std::uint32_t cost = field_.cost[p];
   return cost == kInf ? std::numeric_limits<double>::infinity() : cost * metres_per_unit_;
-}
-
-std::uint32_t DistanceField::nearest_matching(std::uint32_t start_cell,
-                                              FunctionRef<bool(std::uint32_t)> is_target,
-                                              double* distance_m) noexcept {
-  GRIP_ASSERT(start_cell < cell_count());
-  ++generation_;
-  if (generation_ == 0) {  // wrapped: old stamps could alias the new generation
-    std::fill(stamp_.begin(), stamp_.end(), 0);
-    generation_ = 1;
-  }
-  std::fill(std::begin(scratch_.head), std::end(scratch_.head), kNil);
-  const StampedLabels labels{scratch_.cost.data(), stamp_.data(), generation_};
-  const std::uint32_t start = padded(start_cell);
-  labels.set(start, 0);
-  scratch_.next[start] = kNil;
-  scratch_.prev[start] = kNil;
-  scratch_.head[0] = start;
-
-  std::uint32_t found = kNoCell;
-  std::uint32_t found_cost = kInf;
-  run_dial<kBuckets>(traversable_.data(), padded_width_, scratch_.next.data(), scratch_.prev.data(),
-                     scratch_.head, labels, 1, [&](std::uint32_t p, std::uint32_t cost) {
-                       const std::uint32_t cell = unpadded(p);
-                       if (is_target(cell)) {
-                         found = cell;
-                         found_cost = cost;
-                         return true;
-                       }
-                       return false;
-                     });
-  if (distance_m != nullptr) {
-    *distance_m =
-        found == kNoCell ? std::numeric_limits<double>::infinity() : found_cost * metres_per_unit_;
-  }
-  return found;
 }
 
 }  // namespace grip

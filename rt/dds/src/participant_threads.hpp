@@ -27,8 +27,8 @@ inline constexpr ParticipantThread kPlanningThread{"grip-planner", platform::Pol
 // refused (no CAP_SYS_NICE), it stays SCHED_OTHER and the report says so.
 inline constexpr ParticipantThread kPublishThread{"grip-publish", platform::PolicyRequest::kFifo,
                                                   10};
-// Chooses frontier targets while exploring in real time (rt::ExplorationDriver): whole-map
-// passes of milliseconds beside the planning thread.
+// Chooses frontier targets while exploring in real time (rt::ExplorationDriver): wavefronts
+// over the known space, milliseconds, beside the planning thread.
 inline constexpr ParticipantThread kTargetThread{"grip-target", platform::PolicyRequest::kOther, 0};
 
 }  // namespace grip::rt::dds

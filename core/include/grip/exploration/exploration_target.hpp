@@ -5,10 +5,11 @@
 // weight), and when to set a group aside because the vehicle gets no closer to it.
 //
 // It works on its own copy of the map, so that a runtime can run it beside the planning thread
-// (the frontier wavefront and the grouping are whole-map passes of milliseconds) and hand its
-// result over, or inline where a run must be reproducible (lockstep). For the same reason it
-// also computes the planner's rho toward the approach cells (Planner::adopt_goal). The copy and
-// the clearance follow the map where it was written, not over the whole map.
+// (the robot's and rho's wavefronts cover the known space: milliseconds on a large map) and
+// hand its result over, or inline where a run must be reproducible (lockstep). For the same
+// reason it also computes the planner's rho toward the approach cells (Planner::adopt_goal).
+// The copy, the clearance, the frontier cells and the traversable sets follow the map where it
+// was written, not over the whole map.
 //
 // Giving up: a target the vehicle gets no closer to (its rho_A* down by progress_m) for
 // give_up_after_s of vehicle time is given up (FrontierMap::give_up), and the next choice takes

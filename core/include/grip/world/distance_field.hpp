@@ -15,14 +15,13 @@
 // threaded through per-cell next/prev arrays; O(cells reached) per wavefront, plus the index
 // range the previous one reached (cleared). The traversable set is rebuilt in O(cells), or
 // within the window of a change (the windowed prepare()). All buffers are allocated
-// by create(); compute(), the lookups and nearest_matching() never allocate and never throw.
+// by create(); compute() and the lookups never allocate and never throw.
 
 #include <cstdint>
 #include <limits>
 #include <span>
 #include <vector>
 
-#include "grip/common/function_ref.hpp"
 #include "grip/common/result.hpp"
 #include "grip/world/clearance_map.hpp"
 #include "grip/world/occupancy_grid.hpp"
@@ -79,17 +78,6 @@ class DistanceField {
   // Whether the last prepare()/compute() made this cell traversable.
   bool traversable(std::uint32_t cell_index) const noexcept;
 
-  // Dijkstra from start_cell, with the same costs and the traversable set of the last
-  // prepare()/compute(); returns the first settled cell (in order of distance, start_cell first)
-  // for which is_target returns true, or kNoCell when none is reachable. When distance_m is not
-  // null it receives that cell's path length [m] (+infinity on kNoCell). Uses scratch buffers of
-  // its own (the field's distances are untouched) stamped with a generation counter, so a query
-  // costs time proportional to the cells it settles, not to the grid.
-  // Asserts start_cell < cell_count().
-  std::uint32_t nearest_matching(std::uint32_t start_cell,
-                                 FunctionRef<bool(std::uint32_t)> is_target,
-                                 double* distance_m = nullptr) noexcept;
-
   int width() const noexcept { return width_; }
   int height() const noexcept { return height_; }
   double resolution() const noexcept { return resolution_; }
@@ -110,7 +98,7 @@ class DistanceField {
   static constexpr std::uint32_t kBuckets = 100;  // > kDiagonalCost
   static constexpr std::uint32_t kNil = std::numeric_limits<std::uint32_t>::max();
 
-  // One Dijkstra's queue and labels over the padded grid (a ring of never-traversable cells
+  // Dijkstra's queue and labels over the padded grid (a ring of never-traversable cells
   // around the real ones, so neighbours need no bounds tests).
   struct Search {
     std::vector<std::uint32_t> cost;
@@ -142,9 +130,6 @@ class DistanceField {
   std::uint32_t reached_first_ = kNil;     // padded index range the last wavefront labelled
   std::uint32_t reached_last_ = 0;
   Search field_;                           // the wavefront's labels are the field
-  Search scratch_;                         // nearest_matching's
-  std::vector<std::uint32_t> stamp_;       // nearest_matching's generation per padded cell
-  std::uint32_t generation_ = 0;
   ClearanceMap clearance_;  // used when compute() is not given one
 };
 

@@ -25,7 +25,7 @@ class NearestSourceField {
   // Removes every source.
   void reset() noexcept;
   // Makes `cell` a source if it is traversable in `metric` (whose last compute()/prepare()
-  // decides, as for DistanceField::nearest_matching); other cells are ignored. Every call of
+  // decides); other cells are ignored. Every call of
   // one field must pass the same metric, of the field's size.
   void add_source(const DistanceField& metric, std::uint32_t cell) noexcept;
   // The source nearest to `cell`, or kNoCell when none reaches it.

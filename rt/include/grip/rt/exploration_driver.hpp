@@ -4,7 +4,7 @@
 // moves even when the map does not change), and the plan leads to the tree state of least
 // visibility/length weight toward it (PathSelector).
 //
-// In real time the choice (ExplorationTarget: whole-map passes of milliseconds) runs on another
+// In real time the choice (ExplorationTarget: wavefronts of milliseconds) runs on another
 // thread while the planning thread goes on growing toward the previous target; the first cycle
 // after the choice takes it over. The hand-over is one atomic stage: kIdle (the planning thread
 // owns the target: it copies its map in and notes where the robot will be), kRequested (the
