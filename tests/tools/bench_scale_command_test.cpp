@@ -1,6 +1,7 @@
-// `grip bench scale` explores one map at several resolutions for real (here: the small room at
-// 10 and 20 cells a metre, briefly, in lockstep): a row per resolution with its cell count, the
-// planner's start-up, memory and every cycle phase; and bad options are refused.
+// `grip bench scale` explores one map made larger for real (here: the small room, and 2 x 2 of
+// it side by side, at 10 cells a metre, then the room at 20, briefly, in lockstep): a row per
+// map with its cell count, the planner's start-up, memory and every cycle phase; and bad
+// options are refused.
 
 #include <gtest/gtest.h>
 
@@ -20,19 +21,33 @@ TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
   const std::string out_dir = ::testing::TempDir() + "grip-bench-scale";
   const std::string json = ::testing::TempDir() + "grip-bench-scale.json";
   std::filesystem::remove_all(out_dir);
-  const CommandRun r = grip::testing::run_grip(
+  CommandRun r = grip::testing::run_grip(
       "bench scale --map " + grip::testing::write_small_room_map("grip-bench-scale-room.map") +
-      " --subdivisions 10,20 --max-sim-time 10 --out " + out_dir + " --json " + json);
+      " --tiles 1,2 --subdivisions 10 --max-sim-time 10 --out " + out_dir + " --json " + json);
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = grip::testing::run_grip(
+      "bench scale --map " + grip::testing::write_small_room_map("grip-bench-scale-room.map") +
+      " --tiles 1 --subdivisions 20 --max-sim-time 10 --out " + out_dir + " --json " + json +
+      ".fine");
   ASSERT_EQ(r.status, 0) << r.output;
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);
   ASSERT_EQ(j.at("runs").size(), 2U) << r.output;
   EXPECT_EQ(j.at("mode"), "lockstep");
-  const auto& coarse = j.at("runs")[0];
-  const auto& fine = j.at("runs")[1];
-  EXPECT_EQ(coarse.at("cells").get<int>(), 100 * 100);
-  EXPECT_EQ(fine.at("cells").get<int>(), 200 * 200);
-  for (const auto& run : j.at("runs")) {
+  std::ifstream in_fine(json + ".fine");
+  const nlohmann::json j_fine = nlohmann::json::parse(in_fine);
+  ASSERT_EQ(j_fine.at("runs").size(), 1U) << r.output;
+  EXPECT_EQ(j.at("runs")[0].at("cells").get<int>(), 100 * 100);
+  EXPECT_EQ(j.at("runs")[1].at("cells").get<int>(), 200 * 200);  // 2 x 2 rooms
+  EXPECT_EQ(j.at("runs")[1].at("tiles").get<int>(), 2);
+  EXPECT_EQ(j_fine.at("runs")[0].at("cells").get<int>(), 200 * 200);  // the room at 5 cm
+  EXPECT_EQ(j_fine.at("runs")[0].at("subdivision").get<int>(), 20);
+  // The tiling is a map file of its own, four rooms in a square.
+  std::ifstream tiled(out_dir + "/grip-bench-scale-room-tiled2.map");
+  std::string header;
+  for (std::string line; header.size() < 40 && std::getline(tiled, line);) header += line + "|";
+  EXPECT_EQ(header.rfind("type octile|height 20|width 20|map|", 0), 0U) << header;
+  for (const auto& run : {j.at("runs")[0], j.at("runs")[1], j_fine.at("runs")[0]}) {
     EXPECT_EQ(run.at("collisions").get<int>(), 0) << run.dump();
     EXPECT_EQ(run.at("cycles").get<int>(), 201) << run.dump();  // 10 s at 0.05 s, and the first
     const auto& startup = run.at("planner_startup");
@@ -46,7 +61,7 @@ TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
     }
     EXPECT_GT(run.at("compute_ms").at("p50").get<double>(), 0.0);
   }
-  EXPECT_NE(r.output.find("   10      10000"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("     1   20      40000"), std::string::npos) << r.output;
 }
 
 TEST(BenchScaleCommand, BadOptionsAreRefusedNamingWhatIsWrong) {
@@ -61,6 +76,11 @@ TEST(BenchScaleCommand, BadOptionsAreRefusedNamingWhatIsWrong) {
                               " --subdivisions 0");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--subdivisions"), std::string::npos) << r.output;
+  r = grip::testing::run_grip("bench scale --map " +
+                              grip::testing::write_small_room_map("grip-bench-scale-bad.map") +
+                              " --tiles 17");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--tiles"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
 // `grip bench scale`: how grip's cost grows with the map. The same exploration (one vehicle,
-// one seed, a fixed simulated time) on one MovingAI map at several resolutions, from about
-// 0.1 M to 16 M cells, each run a private `grip explore` child process with its report and
-// cycle trace kept in one directory. A row per resolution: cells, the planner's start-up (map
-// in sync, planning), the process's peak memory, and every cycle phase's p50 / p99 / max.
-// A benchmark: it measures and prints, it asserts nothing.
+// one seed, a fixed simulated time) on one MovingAI map made larger, from about 0.4 M to 16 M
+// cells: tiled (n x n copies side by side: a larger building at the same resolution) and
+// subdivided (finer cells: the same building at a higher resolution). Each run is a private
+// `grip explore` child process with its report and cycle trace kept in one directory. A row per
+// map: cells, the planner's start-up (map in sync, planning), the process's peak memory, and
+// every cycle phase's p50 / p99 / max. A benchmark: it measures and prints, it asserts nothing.
 
 #include <algorithm>
 #include <cmath>
@@ -30,8 +31,9 @@ namespace {
 
 struct BenchScaleOptions {
   std::string map;
-  // 12.5 cm to 1.6 cm cells (coarser ones do not leave the frontier approach its range).
-  std::vector<int> subdivisions{8, 10, 20, 40, 62};
+  std::vector<int> tiles{1, 2, 4, 6};
+  // 10 cm cells (coarser than 12.5 cm ones do not leave the frontier approach its range).
+  std::vector<int> subdivisions{10};
   std::string robot = "dd-vel";
   double max_sim_time_s = 60.0;
   bool real_time = false;  // time scale 1 instead of lockstep
@@ -44,7 +46,9 @@ constexpr const char* kPhases[] = {"prepare_us", "retain_us", "grow_us", "commit
                                    "compute_us"};
 
 struct Run {
+  int tiles = 1;
   int subdivision = 0;
+  std::string map;  // the file explored: the map, or its tiling in the output directory
   std::string stem;
   int exit_status = -1;
   nlohmann::json report;                  // empty when the run left none
@@ -84,12 +88,33 @@ bool read_trace(const std::string& path, Run& r) {
   return true;
 }
 
+// The map n x n times side by side, as a MovingAI file; false if it cannot be written.
+bool write_tiled(const sim::LoadedMap& map, int n, const std::string& path) {
+  const int sub = map.cells_per_pixel;
+  const int width = map.grid.width() / sub;
+  const int height = map.grid.height() / sub;
+  std::ofstream out(path);
+  out << "type octile\nheight " << height * n << "\nwidth " << width * n << "\nmap\n";
+  // Row 0 of the file is the top of the map; grid row 0 its bottom.
+  for (int tile_row = 0; tile_row < n; ++tile_row) {
+    for (int row = height - 1; row >= 0; --row) {
+      std::string line;
+      for (int x = 0; x < width; ++x) {
+        line += map.grid.at(map.grid.index(x * sub, row * sub)) == Cell::kFree ? '.' : '@';
+      }
+      for (int tile = 0; tile < n; ++tile) out << line;
+      out << "\n";
+    }
+  }
+  return static_cast<bool>(out.flush());
+}
+
 std::vector<std::string> explore_args(const BenchScaleOptions& o, const Run& r,
                                       const std::string& self) {
   std::vector<std::string> args{self,
                                 "explore",
                                 "--map",
-                                o.map,
+                                r.map,
                                 "--movingai-subdivision",
                                 std::to_string(r.subdivision),
                                 vehicle_args(o.robot)[0],
@@ -116,7 +141,8 @@ double phase_ms(const Run& r, std::size_t phase, double q) {
 
 void print_table(const std::vector<Run>& runs) {
   std::cout << "\n"
-            << std::right << std::setw(5) << "sub" << std::setw(11) << "cells" << std::setw(9)
+            << std::right << std::setw(6) << "tiles" << std::setw(5) << "sub" << std::setw(11)
+            << "cells" << std::setw(9)
             << "sync s" << std::setw(11) << "planning s" << std::setw(9) << "rss MB"
             << std::setw(8) << "cycles" << std::setw(7) << "missed";
   for (const char* phase : kPhases) {
@@ -128,7 +154,8 @@ void print_table(const std::vector<Run>& runs) {
   for (const Run& r : runs) {
     const nlohmann::json& j = r.report;
     const nlohmann::json startup = j.is_null() ? nlohmann::json() : j.value("planner_startup", nlohmann::json());
-    std::cout << std::fixed << std::setw(5) << r.subdivision << std::setw(11) << r.cells
+    std::cout << std::fixed << std::setw(6) << r.tiles << std::setw(5) << r.subdivision
+              << std::setw(11) << r.cells
               << std::setprecision(2) << std::setw(9)
               << (startup.is_null() ? NAN : startup.value("map_sync_s", NAN)) << std::setw(11)
               << (startup.is_null() ? NAN : startup.value("planning_s", NAN))
@@ -159,22 +186,36 @@ int run_bench(const BenchScaleOptions& o) {
     std::cerr << command << ": cannot create " << o.out_dir << ": " << ec.message() << "\n";
     return 2;
   }
-  std::vector<Run> runs;
-  for (const int s : o.subdivisions) {
-    sim::MapLoadOptions load;
-    load.movingai_subdivision = s;
-    auto loaded = sim::load_movingai_map(o.map, load);  // refuses a bad file before any run
-    if (!loaded) {
-      std::cerr << command << ": " << loaded.error().message << "\n";
-      return 2;
-    }
-    Run r;
-    r.subdivision = s;
-    r.cells = loaded->grid.cell_count();
-    r.stem = std::filesystem::path(o.map).stem().string() + "-x" + std::to_string(s);
-    runs.push_back(std::move(r));
+  sim::MapLoadOptions one_cell;
+  one_cell.movingai_subdivision = 1;
+  auto loaded = sim::load_movingai_map(o.map, one_cell);  // refuses a bad file before any run
+  if (!loaded) {
+    std::cerr << command << ": " << loaded.error().message << "\n";
+    return 2;
   }
-  std::cout << command << ": " << o.map << " at " << runs.size() << " resolutions, "
+  const std::string stem = std::filesystem::path(o.map).stem().string();
+  std::vector<Run> runs;
+  for (const int n : o.tiles) {
+    std::string map = o.map;
+    if (n > 1) {
+      map = o.out_dir + "/" + stem + "-tiled" + std::to_string(n) + ".map";
+      if (!write_tiled(*loaded, n, map)) {
+        std::cerr << command << ": cannot write " << map << "\n";
+        return 1;
+      }
+    }
+    for (const int s : o.subdivisions) {
+      Run r;
+      r.tiles = n;
+      r.subdivision = s;
+      r.map = map;
+      r.cells = static_cast<std::uint64_t>(loaded->grid.cell_count()) *
+                static_cast<std::uint64_t>(n * n * s * s);
+      r.stem = stem + "-t" + std::to_string(n) + "-x" + std::to_string(s);
+      runs.push_back(std::move(r));
+    }
+  }
+  std::cout << command << ": " << o.map << " in " << runs.size() << " sizes, "
             << vehicle_label(o.robot) << ", " << (o.real_time ? "real time" : "lockstep") << ", "
             << o.max_sim_time_s << " s simulated each; reports in " << o.out_dir << "/"
             << std::endl;
@@ -190,7 +231,8 @@ int run_bench(const BenchScaleOptions& o) {
       r.report = nullptr;
     }
     if (!read_trace(o.out_dir + "/" + r.stem + ".cycles.csv", r)) r.phases.clear();
-    std::cout << "  x" << r.subdivision << " (" << r.cells << " cells): "
+    std::cout << "  " << r.tiles << " x " << r.tiles << " tiles, x" << r.subdivision << " ("
+              << r.cells << " cells): "
               << (r.report.is_null() ? "no report" : r.report.value("result", "?"))
               << (child ? "" : " (" + child.error().message + ")") << std::endl;
   }
@@ -203,7 +245,8 @@ int run_bench(const BenchScaleOptions& o) {
     j["max_sim_time_s"] = o.max_sim_time_s;
     nlohmann::json rows = nlohmann::json::array();
     for (const Run& r : runs) {
-      nlohmann::json row{{"subdivision", r.subdivision},
+      nlohmann::json row{{"tiles", r.tiles},
+                         {"subdivision", r.subdivision},
                          {"cells", r.cells},
                          {"exit_status", r.exit_status},
                          {"missed", r.missed},
@@ -238,8 +281,13 @@ void register_bench_scale_command(CLI::App& bench) {
   cmd->add_option("--map", o->map, "A MovingAI .map file (its cells are 1 m)")
       ->required()
       ->check(CLI::ExistingFile);
+  cmd->add_option("--tiles", o->tiles,
+                  "n: the map n x n times side by side, a run each (cells grow as n^2)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
   cmd->add_option("--subdivisions", o->subdivisions,
-                  "Grid cells per MovingAI cell side, a run each (cells grow as its square)")
+                  "Grid cells per MovingAI cell side, a run each with every --tiles")
       ->delimiter(',')
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
