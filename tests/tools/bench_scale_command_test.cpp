@@ -25,10 +25,10 @@ TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
       "bench scale --map " + grip::testing::write_small_room_map("grip-bench-scale-room.map") +
       " --tiles 1,2 --subdivisions 10 --max-sim-time 10 --out " + out_dir + " --json " + json);
   ASSERT_EQ(r.status, 0) << r.output;
-  r = grip::testing::run_grip(
-      "bench scale --map " + grip::testing::write_small_room_map("grip-bench-scale-room.map") +
-      " --tiles 1 --subdivisions 20 --max-sim-time 10 --out " + out_dir + " --json " + json +
-      ".fine");
+  r = grip::testing::run_grip("bench scale --map " +
+                              grip::testing::write_small_room_map("grip-bench-scale-room.map") +
+                              " --tiles 1 --subdivisions 20 --max-sim-time 10 --out " + out_dir +
+                              " --json " + json + ".fine");
   ASSERT_EQ(r.status, 0) << r.output;
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);

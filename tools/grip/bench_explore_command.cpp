@@ -22,7 +22,7 @@
 #include <thread>
 #include <vector>
 
-#include "child.hpp"
+#include "bench_children.hpp"
 #include "commands.hpp"
 #include "dds_config.hpp"
 #include "grip/params/params.hpp"
@@ -224,16 +224,9 @@ int run_bench(const BenchExploreOptions& o) {
               << " would use domains above " << kMaxDomainId << "\n";
     return 2;
   }
-  auto self = self_executable();
-  if (!self) {
-    std::cerr << "grip bench explore: " << self.error().message << "\n";
-    return 1;
-  }
-  std::error_code ec;
-  std::filesystem::create_directories(o.out_dir, ec);
-  if (ec) {
-    std::cerr << "grip bench explore: cannot create " << o.out_dir << ": " << ec.message() << "\n";
-    return 2;
+  std::string self;
+  if (const int rc = prepare_bench_children("grip bench explore", o.out_dir, self); rc != 0) {
+    return rc;
   }
   for (const std::string& map : o.maps) {
     if (!std::filesystem::is_regular_file(map)) {
@@ -274,18 +267,14 @@ int run_bench(const BenchExploreOptions& o) {
     for (std::size_t i = next++; i < runs.size(); i = next++) {
       Run& r = runs[i];
       const std::string report = o.out_dir + "/" + r.stem + ".json";
+      std::error_code ec;
       std::filesystem::remove(report, ec);
       auto child = Child::spawn(
-          explore_args(o, r, *self,
+          explore_args(o, r, self,
                        o.domain ? std::optional<unsigned>(*o.domain + slot) : std::nullopt),
           {}, o.out_dir + "/" + r.stem + ".log", true);
       if (child) r.exit_status = child->wait();
-      try {
-        std::ifstream in(report);
-        if (in) r.report = nlohmann::json::parse(in);
-      } catch (const nlohmann::json::exception&) {
-        r.report = nullptr;
-      }
+      r.report = read_child_report(report);
       const std::lock_guard<std::mutex> lock(print);
       std::cout << "[" << ++done << "/" << runs.size() << "] " << run_line(r)
                 << (child ? "" : " (" + child.error().message + ")") << std::endl;

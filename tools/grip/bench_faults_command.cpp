@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "child.hpp"
+#include "bench_children.hpp"
 #include "commands.hpp"
 #include "dds_config.hpp"
 #include "fault_profile.hpp"
@@ -157,17 +157,8 @@ int run_bench(const BenchFaultsOptions& o) {
     std::cerr << command << ": " << o.map << ": no such map file\n";
     return 2;
   }
-  auto self = self_executable();
-  if (!self) {
-    std::cerr << command << ": " << self.error().message << "\n";
-    return 1;
-  }
-  std::error_code ec;
-  std::filesystem::create_directories(o.out_dir, ec);
-  if (ec) {
-    std::cerr << command << ": cannot create " << o.out_dir << ": " << ec.message() << "\n";
-    return 2;
-  }
+  std::string self;
+  if (const int rc = prepare_bench_children(command, o.out_dir, self); rc != 0) return rc;
   const std::string out_dir = std::filesystem::absolute(o.out_dir).string();
   stop_on_signals();  // Ctrl-C: the run in progress ends, then everything is cleaned up
   auto link = NetnsPair::create("f" + std::to_string(getpid()));
@@ -176,7 +167,7 @@ int run_bench(const BenchFaultsOptions& o) {
     return 1;
   }
   FaultRunSetup setup;
-  setup.grip = *self;
+  setup.grip = self;
   setup.link = &*link;
   setup.world_args = o.map.empty() ? std::vector<std::string>{"--scene", o.scene}
                                    : std::vector<std::string>{"--map", o.map};

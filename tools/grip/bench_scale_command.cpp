@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "child.hpp"
+#include "bench_children.hpp"
 #include "commands.hpp"
 #include "grip/sim/map_file.hpp"
 #include "report_file.hpp"
@@ -42,8 +42,7 @@ struct BenchScaleOptions {
 };
 
 // The cycle trace's phases (tools/grip/cycle_trace.cpp), in microseconds.
-constexpr const char* kPhases[] = {"prepare_us", "retain_us", "grow_us", "commit_us",
-                                   "compute_us"};
+constexpr const char* kPhases[] = {"prepare_us", "retain_us", "grow_us", "commit_us", "compute_us"};
 
 struct Run {
   int tiles = 1;
@@ -51,8 +50,8 @@ struct Run {
   std::string map;  // the file explored: the map, or its tiling in the output directory
   std::string stem;
   int exit_status = -1;
-  nlohmann::json report;                  // empty when the run left none
-  std::uint64_t cells = 0;                // of the grid
+  nlohmann::json report;                    // empty when the run left none
+  std::uint64_t cells = 0;                  // of the grid
   std::vector<std::vector<double>> phases;  // per kPhases entry, one sample per cycle
   std::uint64_t missed = 0;
 };
@@ -81,7 +80,8 @@ bool read_trace(const std::string& path, Run& r) {
     for (std::size_t p = 0; p < columns.size(); ++p) {
       r.phases[p].push_back(std::strtod(fields[columns[p]].c_str(), nullptr));
     }
-    if (missed != header.end() && fields[static_cast<std::size_t>(missed - header.begin())] == "1") {
+    if (missed != header.end() &&
+        fields[static_cast<std::size_t>(missed - header.begin())] == "1") {
       ++r.missed;
     }
   }
@@ -142,9 +142,8 @@ double phase_ms(const Run& r, std::size_t phase, double q) {
 void print_table(const std::vector<Run>& runs) {
   std::cout << "\n"
             << std::right << std::setw(6) << "tiles" << std::setw(5) << "sub" << std::setw(11)
-            << "cells" << std::setw(9)
-            << "sync s" << std::setw(11) << "planning s" << std::setw(9) << "rss MB"
-            << std::setw(8) << "cycles" << std::setw(7) << "missed";
+            << "cells" << std::setw(9) << "sync s" << std::setw(11) << "planning s" << std::setw(9)
+            << "rss MB" << std::setw(8) << "cycles" << std::setw(7) << "missed";
   for (const char* phase : kPhases) {
     std::string name(phase);
     name.resize(name.size() - 3);
@@ -153,10 +152,10 @@ void print_table(const std::vector<Run>& runs) {
   std::cout << "\n";
   for (const Run& r : runs) {
     const nlohmann::json& j = r.report;
-    const nlohmann::json startup = j.is_null() ? nlohmann::json() : j.value("planner_startup", nlohmann::json());
+    const nlohmann::json startup =
+        j.is_null() ? nlohmann::json() : j.value("planner_startup", nlohmann::json());
     std::cout << std::fixed << std::setw(6) << r.tiles << std::setw(5) << r.subdivision
-              << std::setw(11) << r.cells
-              << std::setprecision(2) << std::setw(9)
+              << std::setw(11) << r.cells << std::setprecision(2) << std::setw(9)
               << (startup.is_null() ? NAN : startup.value("map_sync_s", NAN)) << std::setw(11)
               << (startup.is_null() ? NAN : startup.value("planning_s", NAN))
               << std::setprecision(0) << std::setw(9)
@@ -164,8 +163,8 @@ void print_table(const std::vector<Run>& runs) {
               << (j.is_null() ? 0 : j.value("cycles", 0)) << std::setw(7) << r.missed;
     for (std::size_t p = 0; p < std::size(kPhases); ++p) {
       std::ostringstream cell;
-      cell << std::fixed << std::setprecision(2) << phase_ms(r, p, 0.5) << "/" << phase_ms(r, p, 0.99)
-           << "/" << phase_ms(r, p, 1.0);
+      cell << std::fixed << std::setprecision(2) << phase_ms(r, p, 0.5) << "/"
+           << phase_ms(r, p, 0.99) << "/" << phase_ms(r, p, 1.0);
       std::cout << std::setw(24) << cell.str();
     }
     if (j.is_null()) std::cout << "  (no report: exit " << r.exit_status << ")";
@@ -175,17 +174,8 @@ void print_table(const std::vector<Run>& runs) {
 
 int run_bench(const BenchScaleOptions& o) {
   const char* command = "grip bench scale";
-  auto self = self_executable();
-  if (!self) {
-    std::cerr << command << ": " << self.error().message << "\n";
-    return 1;
-  }
-  std::error_code ec;
-  std::filesystem::create_directories(o.out_dir, ec);
-  if (ec) {
-    std::cerr << command << ": cannot create " << o.out_dir << ": " << ec.message() << "\n";
-    return 2;
-  }
+  std::string self;
+  if (const int rc = prepare_bench_children(command, o.out_dir, self); rc != 0) return rc;
   sim::MapLoadOptions one_cell;
   one_cell.movingai_subdivision = 1;
   auto loaded = sim::load_movingai_map(o.map, one_cell);  // refuses a bad file before any run
@@ -221,19 +211,16 @@ int run_bench(const BenchScaleOptions& o) {
             << std::endl;
   for (Run& r : runs) {
     const std::string report = o.out_dir + "/" + r.stem + ".json";
+    std::error_code ec;
     std::filesystem::remove(report, ec);
-    auto child = Child::spawn(explore_args(o, r, *self), {}, o.out_dir + "/" + r.stem + ".log", true);
+    auto child =
+        Child::spawn(explore_args(o, r, self), {}, o.out_dir + "/" + r.stem + ".log", true);
     if (child) r.exit_status = child->wait();
-    try {
-      std::ifstream in(report);
-      if (in) r.report = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception&) {
-      r.report = nullptr;
-    }
+    r.report = read_child_report(report);
     if (!read_trace(o.out_dir + "/" + r.stem + ".cycles.csv", r)) r.phases.clear();
     std::cout << "  " << r.tiles << " x " << r.tiles << " tiles, x" << r.subdivision << " ("
-              << r.cells << " cells): "
-              << (r.report.is_null() ? "no report" : r.report.value("result", "?"))
+              << r.cells
+              << " cells): " << (r.report.is_null() ? "no report" : r.report.value("result", "?"))
               << (child ? "" : " (" + child.error().message + ")") << std::endl;
   }
   print_table(runs);
@@ -245,12 +232,9 @@ int run_bench(const BenchScaleOptions& o) {
     j["max_sim_time_s"] = o.max_sim_time_s;
     nlohmann::json rows = nlohmann::json::array();
     for (const Run& r : runs) {
-      nlohmann::json row{{"tiles", r.tiles},
-                         {"subdivision", r.subdivision},
-                         {"cells", r.cells},
-                         {"exit_status", r.exit_status},
-                         {"missed", r.missed},
-                         {"report", o.out_dir + "/" + r.stem + ".json"}};
+      nlohmann::json row{{"tiles", r.tiles},   {"subdivision", r.subdivision},
+                         {"cells", r.cells},   {"exit_status", r.exit_status},
+                         {"missed", r.missed}, {"report", o.out_dir + "/" + r.stem + ".json"}};
       if (!r.report.is_null()) {
         for (const char* key : {"result", "coverage", "collisions", "cycles", "wall_time_s",
                                 "peak_rss_mb", "planner_startup"}) {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <thread>
 
-#include "child.hpp"
+#include "bench_children.hpp"
 #include "stop_signal.hpp"
 #include "vehicle_arg.hpp"
 
@@ -25,15 +25,6 @@ constexpr double kRestWindow_s = 10.0;
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-nlohmann::json read_json(const std::string& path) {
-  try {
-    std::ifstream in(path);
-    if (in) return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-  }
-  return nullptr;
 }
 
 // The processes of one run and the link faults on it; whatever is left is stopped and undone
@@ -175,7 +166,8 @@ std::optional<std::int64_t> plans_lost(const FaultRunSetup& s, unsigned planner_
   if (report.is_null() || vehicle_starts != 1) return std::nullopt;
   std::int64_t published = 0;
   for (unsigned n = 1; n <= planner_starts; ++n) {
-    const nlohmann::json planner = read_json(s.stem + ".planner-" + std::to_string(n) + ".json");
+    const nlohmann::json planner =
+        read_child_report(s.stem + ".planner-" + std::to_string(n) + ".json");
     if (planner.is_null()) return std::nullopt;
     published += planner.at("plans").value("published", std::int64_t{0});
   }
@@ -296,7 +288,7 @@ FaultRunOutcome run_fault_profile(const FaultRunSetup& s, const FaultProfile& p)
   }
   run.stop_planner();
   if (Status st = run.clear_link(); !st && error.empty()) error = st.error().message;
-  out.report = read_json(run.report_path());
+  out.report = read_child_report(run.report_path());
   out.result = out.report.is_null() ? "no report" : out.report.value("result", "?");
   out.plans_lost = plans_lost(s, run.planner_starts(), run.vehicle_starts(), out.report);
   if (!out.report.is_null() && sim_ended >= 0.0) {

@@ -236,8 +236,8 @@ void FrontierMap::detect(const OccupancyGrid& grid, const CellBox& box) noexcept
           map[i] == Cell::kFree && ((x > 0 && unknown(i - 1)) || (x + 1 < w && unknown(i + 1)) ||
                                     (y > 0 && unknown(i - w)) || (y + 1 < h && unknown(i + w)));
       const std::uint64_t bit = std::uint64_t{1} << (i & 63U);
-      frontier_bits_[i >> 6] = frontier ? frontier_bits_[i >> 6] | bit
-                                        : frontier_bits_[i >> 6] & ~bit;
+      frontier_bits_[i >> 6] =
+          frontier ? frontier_bits_[i >> 6] | bit : frontier_bits_[i >> 6] & ~bit;
     }
   }
 }

@@ -147,8 +147,8 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
       clearance != nullptr ? clearance->squared_cells_at_least(inflation_m) : 0;
   // A clearance map updated in windows is exact only up to its bound (ClearanceMap::update).
   GRIP_ASSERT(clearance == nullptr || min_d2 <= clearance->exact_up_to());
-  const CellBox box{std::max(window.x0, 0), std::max(window.y0, 0),
-                    std::min(window.x1, width_ - 1), std::min(window.y1, height_ - 1)};
+  const CellBox box{std::max(window.x0, 0), std::max(window.y0, 0), std::min(window.x1, width_ - 1),
+                    std::min(window.y1, height_ - 1)};
   const auto w = static_cast<std::size_t>(width_);
   for (int row = box.y0; row <= box.y1 && box.x0 <= box.x1; ++row) {
     const auto y = static_cast<std::size_t>(row);

@@ -93,8 +93,8 @@ class PlanningSide {
   double heading_x_m_ = 0.0;  // the goal, or the frontier target
   double heading_y_m_ = 0.0;
   std::unique_ptr<MapTile> tile_ = std::make_unique<MapTile>();
-  std::uint64_t map_sequence_ = 0;  // the last update applied
-  std::uint64_t map_checksum_ = 0;  // of the map after the last complete hand-over
+  std::uint64_t map_sequence_ = 0;      // the last update applied
+  std::uint64_t map_checksum_ = 0;      // of the map after the last complete hand-over
   std::uint64_t running_checksum_ = 0;  // of the map as it is (link::map_checksum)
   bool map_in_sync_ = false;
   std::uint64_t vehicle_incarnation_ = 0;

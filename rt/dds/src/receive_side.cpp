@@ -348,7 +348,8 @@ void ReceiveSide<V>::too_large(const grip_msg_MapUpdate& msg) {
   const link::MapGeometry geometry = link::geometry_of(msg);
   if (too_large_reported_ == geometry) return;
   too_large_reported_ = geometry;
-  const std::uint64_t cells = static_cast<std::uint64_t>(msg.map_width_cells) * msg.map_height_cells;
+  const std::uint64_t cells =
+      static_cast<std::uint64_t>(msg.map_width_cells) * msg.map_height_cells;
   std::string line = "the vehicle's map is ";
   line.append(std::to_string(msg.map_width_cells))
       .append(" x ")

@@ -94,9 +94,9 @@ class ExplorationTarget {
   ClearanceMap clearance_;
   FrontierMap frontiers_;
   DistanceField rho_;
-  bool map_changed_ = true;  // since the last choose()
-  CellBox written_;            // cells copied in since the last choose()
-  CellBox clearance_changed_;  // of those, the ones that changed between free and not free
+  bool map_changed_ = true;           // since the last choose()
+  CellBox written_;                   // cells copied in since the last choose()
+  CellBox clearance_changed_;         // of those, the ones that changed between free and not free
   std::uint32_t clearance_exact_d2_;  // what frontiers and rho compare clearance with
   // Per rho field of ours (DistanceField::tag() 1 and 2): where traversability can have changed
   // since its traversable set was built; the tag of the one built last.

@@ -172,11 +172,11 @@ class FrontierMap {
   double resolution_;
   FrontierConfig config_;
   DistanceField field_;
-  std::vector<Offset> window_;          // the approach disk, nearest offsets first
+  std::vector<Offset> window_;                // the approach disk, nearest offsets first
   std::vector<std::uint64_t> frontier_bits_;  // per cell: a frontier cell (row-major bits)
   bool detected_ = false;                     // frontier_bits_ hold the last update's grid
-  BoundedVector<std::uint32_t> label_;  // per frontier cell: kUnlabelled or its group
-  BoundedVector<std::uint32_t> cells_;  // frontier cells, grouped (the flood fill's queue)
+  BoundedVector<std::uint32_t> label_;        // per frontier cell: kUnlabelled or its group
+  BoundedVector<std::uint32_t> cells_;        // frontier cells, grouped (the flood fill's queue)
   BoundedVector<FrontierGroup> groups_;
   BoundedVector<std::uint32_t> seeds_;     // the robot wavefront's start cells
   BoundedVector<std::uint32_t> approach_;  // the target's approach cells

@@ -48,8 +48,8 @@ struct PlannerStats {
   std::uint64_t propagations = 0;  // integration steps of random plans
   std::uint64_t collision_checks = 0;
   std::uint64_t contingency_checks = 0;  // braking maneuvers run
-  bool pool_exhausted = false;      // the pools ran out at least once
-  std::uint64_t pool_recycles = 0;  // and were recycled (PlannerConfig::recycle_full_pool)
+  bool pool_exhausted = false;           // the pools ran out at least once
+  std::uint64_t pool_recycles = 0;       // and were recycled (PlannerConfig::recycle_full_pool)
 };
 
 // Whether a retainment recomputes rho toward F (a whole-map wavefront) or keeps the field of

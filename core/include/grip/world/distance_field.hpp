@@ -124,12 +124,12 @@ class DistanceField {
   double origin_y_m_ = 0.0;
   double inflation_m_ = 0.0;
   std::uint64_t source_revision_ = 0;
-  std::vector<std::uint8_t> traversable_;  // padded
+  std::vector<std::uint8_t> traversable_;       // padded
   const OccupancyGrid* mask_source_ = nullptr;  // traversable_ built from it, whole first
   std::uint32_t tag_ = 0;
-  std::uint32_t reached_first_ = kNil;     // padded index range the last wavefront labelled
+  std::uint32_t reached_first_ = kNil;  // padded index range the last wavefront labelled
   std::uint32_t reached_last_ = 0;
-  Search field_;                           // the wavefront's labels are the field
+  Search field_;            // the wavefront's labels are the field
   ClearanceMap clearance_;  // used when compute() is not given one
 };
 
