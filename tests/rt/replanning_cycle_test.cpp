@@ -55,7 +55,7 @@ class ReplanningCycleTest : public ::testing::Test {
       const Car::Control u(step.control[0], step.control[1]);
       for (long i = 0; i < std::lround(step.duration_s / dt) && left > 1e-9; ++i, left -= dt) {
         q = car.step(q, u, dt);
-        collided = collided || !cycle->planner().checker().is_free(q[0], q[1], q[2]);
+        collided = collided || !cycle->planner().chassis_free(q);
       }
     }
     return q;

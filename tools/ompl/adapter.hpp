@@ -11,7 +11,8 @@
 //                  propagation step, so with the step = PlannerConfig::integration_step_s every
 //                  state is reached as the planner reaches it;
 //   validity       CollisionChecker::is_free with the planner's margin (the chassis grown by
-//                  half a step's motion), the planner's only per-step test (bounds hold by
+//                  half a step's motion at the state's speed: Planner::chassis_free), the
+//                  planner's only per-step test (bounds hold by
 //                  construction: outside the grid is never free, velocities saturate);
 //   goal           the reference point within the goal radius (Goal::contains);
 //   projection     (x, y), the default projection for KPIECE1, PDST and EST.
@@ -209,20 +210,30 @@ class CorePropagator : public oc::StatePropagator {
   std::shared_ptr<WorkCounters> counters_;
 };
 
-// The planner's chassis test, counted. The checker must outlive this object.
+// The planner's chassis test (Planner::chassis_free: the margin of the state's own speed for
+// a propagation step of step_s), counted. The checker must outlive this object.
+template <VehicleModel V>
 class CoreValidityChecker : public ob::StateValidityChecker {
  public:
-  CoreValidityChecker(const ob::SpaceInformationPtr& si, const CollisionChecker& checker,
+  CoreValidityChecker(const ob::SpaceInformationPtr& si, const V& vehicle,
+                      const CollisionChecker& checker, double step_s,
                       std::shared_ptr<WorkCounters> counters)
-      : ob::StateValidityChecker(si), checker_(&checker), counters_(std::move(counters)) {}
+      : ob::StateValidityChecker(si),
+        vehicle_(vehicle),
+        checker_(&checker),
+        step_s_(step_s),
+        counters_(std::move(counters)) {}
   bool isValid(const ob::State* state) const override {
     ++counters_->collision_checks;
-    const auto& pose = pose_of(state);
-    return checker_->is_free(pose.getX(), pose.getY(), pose.getYaw());
+    const typename V::State q = to_core<V>(state);
+    return checker_->is_free(state_x(q), state_y(q), state_theta(q),
+                             state_collision_margin_m(vehicle_, q, step_s_));
   }
 
  private:
+  V vehicle_;
   const CollisionChecker* checker_;
+  double step_s_;
   std::shared_ptr<WorkCounters> counters_;
 };
 
@@ -301,7 +312,8 @@ OmplProblem make_problem(const V& vehicle, const CollisionChecker& checker,
   const oc::SpaceInformationPtr& si = p.setup->getSpaceInformation();
   si->setPropagationStepSize(settings.step_s);                           // seconds
   si->setMinMaxControlDuration(settings.min_steps, settings.max_steps);  // steps
-  p.setup->setStateValidityChecker(std::make_shared<CoreValidityChecker>(si, checker, p.counters));
+  p.setup->setStateValidityChecker(
+      std::make_shared<CoreValidityChecker<V>>(si, vehicle, checker, settings.step_s, p.counters));
   p.setup->setStatePropagator(std::make_shared<CorePropagator<V>>(si, vehicle, p.counters));
   ob::ScopedState<> s(p.space);
   to_ompl<V>(start, s.get());

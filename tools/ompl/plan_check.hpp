@@ -10,7 +10,8 @@
 //  - the motion between consecutive states: from each state, the step is integrated again in
 //    `substeps` sub-steps of dt / substeps, and every sub-step state is checked by the core
 //    CollisionChecker grown only by the margin of a sub-step (half the largest chassis motion
-//    in dt / substeps, the formula the planners use for dt), which covers the continuous
+//    in dt / substeps at the state's speed, state_collision_margin_m, as the planners check
+//    each dt), which covers the continuous
 //    motion between sub-steps, and by validate_state (finite, within the limits). Sub-steps
 //    restart from every dt state, so the check follows the executed trajectory instead of
 //    drifting from it over a long plan (open-loop integration error would grow with time);
@@ -79,7 +80,12 @@ PlanCheck check_plan(const V& vehicle, const CollisionChecker& fine_checker, con
   }
   const double fine_dt = step_s / static_cast<double>(substeps);
   State q = start;
-  if (!fine_checker.is_free(state_x(q), state_y(q), state_theta(q))) {
+  // The margin of each state's own speed for a fine step, as the planners check theirs.
+  const auto chassis_free = [&](const State& at) {
+    return fine_checker.is_free(state_x(at), state_y(at), state_theta(at),
+                                state_collision_margin_m(vehicle, at, fine_dt));
+  };
+  if (!chassis_free(q)) {
     return fail("the start collides");
   }
   double t = 0.0;
@@ -94,7 +100,7 @@ PlanCheck check_plan(const V& vehicle, const CollisionChecker& fine_checker, con
         const State next = vehicle.step(fine, u, fine_dt);
         out.length_m += std::hypot(state_x(next) - state_x(fine), state_y(next) - state_y(fine));
         fine = next;
-        if (!fine_checker.is_free(state_x(fine), state_y(fine), state_theta(fine))) {
+        if (!chassis_free(fine)) {
           return fail("piece " + std::to_string(i) +
                       " collides at t = " + std::to_string(t + (j + 1.0) * fine_dt) + " s, (" +
                       std::to_string(state_x(fine)) + ", " + std::to_string(state_y(fine)) + ")");

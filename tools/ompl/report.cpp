@@ -252,7 +252,8 @@ nlohmann::json fairness_notes(double time_limit_s) {
       {"control_duration_s", {config.min_plan_duration_s, config.max_plan_duration_s}},
       {"controls", "the vehicle's sample_control, for GRIP and (through a ControlSampler) OMPL"},
       {"collision_checker",
-       "the core CollisionChecker with the planner's margin (half a step's chassis motion), "
+       "the core CollisionChecker with the planner's margin (half a step's chassis motion at "
+       "the state's speed), "
        "once per propagation step"},
       {"goal",
        "the scene's goal disk (reference point within the radius); OMPL: Goal "

@@ -111,8 +111,7 @@ template <VehicleModel V>
 PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_step) noexcept {
   const auto& tree = planner.tree();
   GRIP_ASSERT(tree.edge_capacity() <= max_edges_);
-  const DistanceField& rho = planner.rho_field();
-  GRIP_ASSERT(rho.width() == width_ && rho.height() == height_);
+  GRIP_ASSERT(planner.rho_field().width() == width_ && planner.rho_field().height() == height_);
   const auto targets = static_cast<std::uint32_t>(targets_.size());
   const auto d_max = static_cast<float>(config_.sensing_radius_m);
   const double lambda = config_.length_weight_per_m;
@@ -122,7 +121,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
 
   const TreeState root = planner.root_state();
   const auto& root_state = tree.edge_state(root.edge, root.index);
-  const double root_rho = rho.distance_m(state_x(root_state), state_y(root_state));
+  const double root_rho = planner.rho_m(root_state);
 
   // Both candidates are tracked in one pass; which one counts is known only at its end.
   PathChoice by_sight;
@@ -151,11 +150,11 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
     }
   };
   // One exponential per state serves both candidates: w = d exp(lambda l).
-  const auto offer = [&](EdgeHandle e, std::uint16_t k, double x, double y, double d_sum,
+  const auto offer = [&](EdgeHandle e, std::uint16_t k, const auto& q, double d_sum,
                          std::uint32_t unseen, double length) {
     if (tree.step_of(e, k) < min_step) return;
     const double growth = std::exp(lambda * length);
-    const double rho_end = rho.distance_m(x, y);
+    const double rho_end = planner.rho_m(q);
     // A cell tr does not see lies d_max beyond the sensing disk of wherever tr ends: d_max plus
     // rho_A* from its end to F. With d_max alone, a trajectory seeing a few cells would lose to
     // standing still (its length costs more than the few cells gain) and the robot stalls
@@ -210,7 +209,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
       px = x;
       py = y;
       fold(d, d_sum, unseen, x, y);
-      offer(e, static_cast<std::uint16_t>(k), x, y, d_sum, unseen, length);
+      offer(e, static_cast<std::uint16_t>(k), q, d_sum, unseen, length);
       if (k == edge.last) break;
       k = std::min<int>(k + stride, edge.last);
     }

@@ -30,18 +30,26 @@ Result<Planner<V>> Planner<V>::create(const V& vehicle, const OccupancyGrid& gri
   if (!field) return field.error();
   auto baseline = BaselineSelection<V>::create(config, grid);
   if (!baseline) return baseline.error();
+  std::optional<TurningRho> turning_rho;
+  if (config.rho_turning && vehicle.min_turning_radius_m() > 0.0) {
+    auto made = TurningRho::create(vehicle.min_turning_radius_m(), grid.resolution());
+    if (!made) return made.error();
+    turning_rho = std::move(made).value();
+  }
   return Planner(vehicle, grid, config, std::move(checker).value(), std::move(field).value(),
-                 std::move(baseline).value());
+                 std::move(baseline).value(), std::move(turning_rho));
 }
 
 template <VehicleModel V>
 Planner<V>::Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerConfig& config,
-                    CollisionChecker checker, DistanceField field, BaselineSelection<V> baseline)
+                    CollisionChecker checker, DistanceField field, BaselineSelection<V> baseline,
+                    std::optional<TurningRho> turning_rho)
     : vehicle_(vehicle),
       config_(config),
       grid_(&grid),
       checker_(std::move(checker)),
       rho_field_(std::move(field)),
+      turning_rho_(std::move(turning_rho)),
       tree_(config.max_edges, config.max_trajectories, config.states_per_trajectory(),
             config.steps_per_record),
       heap_(config.max_edges),
@@ -125,9 +133,7 @@ RetainStatus Planner<V>::restart(const State& q, const Goal& goal, double horizo
   } else {
     refresh_checker();
   }
-  if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
-    return RetainStatus::kRootInCollision;
-  }
+  if (!chassis_free(q)) return RetainStatus::kRootInCollision;
   if (rho == RhoUpdate::kRecompute || !problem_set_) {
     if (const RetainStatus s = set_target(goal); s != RetainStatus::kOk) return s;
   }
@@ -157,6 +163,7 @@ template <VehicleModel V>
 RetainStatus Planner<V>::set_target(const Goal& goal) noexcept {
   if (const RetainStatus s = target_.assign(goal); s != RetainStatus::kOk) return s;
   rho_field_.compute(*grid_, checker_.clearance(), target_.cells(), config_.rho_clearance_m);
+  if (turning_rho_) turning_rho_->forget();
   return RetainStatus::kOk;
 }
 
@@ -167,6 +174,7 @@ RetainStatus Planner<V>::adopt_goal(const Goal& goal, DistanceField& rho) noexce
   if (goal.is_disk()) return RetainStatus::kGoalNotCells;
   if (const RetainStatus s = target_.assign(goal); s != RetainStatus::kOk) return s;
   std::swap(rho_field_, rho);
+  if (turning_rho_) turning_rho_->forget();
   return RetainStatus::kOk;
 }
 
@@ -205,9 +213,7 @@ RetainStatus Planner<V>::retain(TreeState new_root, const Goal& goal, double hor
   if (new_root.edge == kNoHandle) return RetainStatus::kRootNotInTree;
   const State& q = tree_.edge_state(new_root.edge, new_root.index);
   refresh_checker();
-  if (!checker_.is_free(state_x(q), state_y(q), state_theta(q))) {
-    return RetainStatus::kRootInCollision;
-  }
+  if (!chassis_free(q)) return RetainStatus::kRootInCollision;
   if (rho == RhoUpdate::kRecompute) {
     if (const RetainStatus s = set_target(goal); s != RetainStatus::kOk) return s;
   }
@@ -427,7 +433,7 @@ typename Planner<V>::Propagated Planner<V>::propagate(TrajectoryHandle t, const 
 template <VehicleModel V>
 bool Planner<V>::is_free(const State& q) noexcept {
   ++stats_.collision_checks;
-  return checker_.is_free(state_x(q), state_y(q), state_theta(q));
+  return chassis_free(q);
 }
 
 template <VehicleModel V>

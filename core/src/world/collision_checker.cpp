@@ -69,9 +69,6 @@ CollisionChecker::CollisionChecker(const OccupancyGrid& grid, const Footprint& f
       origin_y_m_(grid.origin_y()),
       inv_resolution_(1.0 / grid.resolution()) {
   const Footprint grown = footprint.inflated(margin_m);
-  front_cells_ = grown.front_m * inv_resolution_;
-  rear_cells_ = grown.rear_m * inv_resolution_;
-  half_width_cells_ = grown.half_width_m * inv_resolution_;
 
   // Fast path soundness. Every point of the reference cell is within hd (half a cell diagonal)
   // of its centre, and clearance_m(cell) = sqrt(d2) * res - hd is a lower bound of the distance
@@ -162,16 +159,28 @@ bool CollisionChecker::rectangle_is_free_exact(double x_m, double y_m,
   if (!(std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(theta_rad))) {
     return false;
   }
-  return exact(x_m, y_m, std::cos(theta_rad), std::sin(theta_rad));
+  return exact(x_m, y_m, std::cos(theta_rad), std::sin(theta_rad), margin_m_);
 }
 
-bool CollisionChecker::covering_disks_or_exact(double x_m, double y_m,
-                                               double theta_rad) const noexcept {
+bool CollisionChecker::is_free(double x_m, double y_m, double theta_rad,
+                               double margin_m) const noexcept {
+  if (!(margin_m >= 0.0 && margin_m < margin_m_)) margin_m = margin_m_;
+  if (fast_path_free(x_m, y_m)) return std::isfinite(theta_rad);
+  return covering_disks_or_exact(x_m, y_m, theta_rad, margin_m);
+}
+
+bool CollisionChecker::covering_disks_or_exact(double x_m, double y_m, double theta_rad,
+                                               double margin_m) const noexcept {
   if (!(std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(theta_rad))) {
     return false;
   }
   const double c = std::cos(theta_rad);
   const double s = std::sin(theta_rad);
+  return covering_disks_clear(x_m, y_m, c, s) || exact(x_m, y_m, c, s, margin_m);
+}
+
+bool CollisionChecker::covering_disks_clear(double x_m, double y_m, double c,
+                                            double s) const noexcept {
   const double px = (x_m - origin_x_m_) * inv_resolution_;
   const double py = (y_m - origin_y_m_) * inv_resolution_;
   bool all_clear = true;
@@ -182,19 +191,23 @@ bool CollisionChecker::covering_disks_or_exact(double x_m, double y_m,
                 clearance_.squared_cells(static_cast<std::uint32_t>(v) * width_ +
                                          static_cast<std::uint32_t>(u)) > disk_free_d2_;
   }
-  return all_clear || exact(x_m, y_m, c, s);
+  return all_clear;
 }
 
-bool CollisionChecker::exact(double x_m, double y_m, double c, double s) const noexcept {
+bool CollisionChecker::exact(double x_m, double y_m, double c, double s,
+                             double margin_m) const noexcept {
   // Everything below is in cell units relative to the grid origin.
   const double px = (x_m - origin_x_m_) * inv_resolution_;
   const double py = (y_m - origin_y_m_) * inv_resolution_;
-  const double fx = c * front_cells_;
-  const double fy = s * front_cells_;
-  const double rx = -c * rear_cells_;
-  const double ry = -s * rear_cells_;
-  const double lx = -s * half_width_cells_;
-  const double ly = c * half_width_cells_;
+  const double front_cells = (footprint_.front_m + margin_m) * inv_resolution_;
+  const double rear_cells = (footprint_.rear_m + margin_m) * inv_resolution_;
+  const double half_width_cells = (footprint_.half_width_m + margin_m) * inv_resolution_;
+  const double fx = c * front_cells;
+  const double fy = s * front_cells;
+  const double rx = -c * rear_cells;
+  const double ry = -s * rear_cells;
+  const double lx = -s * half_width_cells;
+  const double ly = c * half_width_cells;
   // Counter-clockwise: front-right, front-left, rear-left, rear-right.
   const double vx[4] = {px + fx - lx, px + fx + lx, px + rx + lx, px + rx - lx};
   const double vy[4] = {py + fy - ly, py + fy + ly, py + ry + ly, py + ry - ly};

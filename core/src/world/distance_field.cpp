@@ -262,6 +262,14 @@ bool DistanceField::traversable(std::uint32_t cell_index) const noexcept {
   return traversable_[padded(cell_index)] != 0;
 }
 
+std::uint32_t DistanceField::cell_at(double x_m, double y_m) const noexcept {
+  const double u = (x_m - origin_x_m_) * inv_resolution_;
+  const double v = (y_m - origin_y_m_) * inv_resolution_;
+  if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) return kNoCell;
+  return static_cast<std::uint32_t>(v) * static_cast<std::uint32_t>(width_) +
+         static_cast<std::uint32_t>(u);
+}
+
 double DistanceField::distance_m(double x_m, double y_m) const noexcept {
   const double u = (x_m - origin_x_m_) * inv_resolution_;
   const double v = (y_m - origin_y_m_) * inv_resolution_;
@@ -272,6 +280,35 @@ double DistanceField::distance_m(double x_m, double y_m) const noexcept {
       (static_cast<std::uint32_t>(v) + 1) * padded_width_ + static_cast<std::uint32_t>(u) + 1;
   const std::uint32_t cost = field_.cost[p];
   return cost == kInf ? std::numeric_limits<double>::infinity() : cost * metres_per_unit_;
+}
+
+std::uint32_t DistanceField::descend(std::uint32_t cell_index,
+                                     std::uint32_t cost_drop) const noexcept {
+  std::uint32_t p = padded(cell_index);
+  const std::uint32_t start = field_.cost[p];
+  if (start == kInf) return cell_index;
+  const auto w = static_cast<std::int64_t>(padded_width_);
+  const std::int64_t offsets[8] = {-1, 1, -w, w, -w - 1, -w + 1, w - 1, w + 1};
+  const std::uint32_t steps[8] = {kOrthogonalCost, kOrthogonalCost, kOrthogonalCost,
+                                  kOrthogonalCost, kDiagonalCost,   kDiagonalCost,
+                                  kDiagonalCost,   kDiagonalCost};
+  // Every step lowers the cost (a neighbour on a shortest path costs the step less), and the
+  // padding ring is never reached, so no bounds test is needed.
+  while (field_.cost[p] != 0 && start - field_.cost[p] < cost_drop) {
+    std::uint32_t best = p;
+    std::uint64_t best_via = field_.cost[p];
+    for (int k = 0; k < 8; ++k) {
+      const auto n = static_cast<std::uint32_t>(static_cast<std::int64_t>(p) + offsets[k]);
+      const std::uint64_t via = static_cast<std::uint64_t>(field_.cost[n]) + steps[k];
+      if (field_.cost[n] < field_.cost[p] && via <= best_via) {
+        best_via = via;
+        best = n;
+      }
+    }
+    if (best == p) break;
+    p = best;
+  }
+  return unpadded(p);
 }
 
 }  // namespace grip

@@ -116,7 +116,7 @@ TEST_F(RetainmentTest, EdgesTheNewMapInvalidatesAreCutAndWhatStaysIsCollisionFre
   planner->visit_edges([&](EdgeHandle, const Edge& edge) {
     for (int k = edge.first; k <= edge.last; ++k) {
       const auto& q = planner->tree().state(edge.trajectory, static_cast<std::uint32_t>(k));
-      EXPECT_TRUE(planner->checker().is_free(q[0], q[1], q[2]));
+      EXPECT_TRUE(planner->chassis_free(q));
       ++states;
     }
   });

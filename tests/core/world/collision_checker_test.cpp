@@ -274,6 +274,14 @@ void compare_with_reference(std::uint64_t seed, const Footprint& fp, double marg
         << "pose " << n << ": " << x << ", " << y << ", " << theta;
     ASSERT_EQ(checker.rectangle_is_free_exact(x, y, theta), expected)
         << "pose " << n << ": " << x << ", " << y << ", " << theta;
+    // A smaller margin for this call: the chassis grown by it, whichever tier answers; a larger
+    // one, or one not finite, is the checker's own.
+    const double smaller = margin * random.uniform01();
+    ASSERT_EQ(checker.is_free(x, y, theta, smaller),
+              reference_is_free(grid, fp.inflated(smaller), x, y, theta))
+        << "pose " << n << ": " << x << ", " << y << ", " << theta << " margin " << smaller;
+    ASSERT_EQ(checker.is_free(x, y, theta, margin + 1.0), expected);
+    ASSERT_EQ(checker.is_free(x, y, theta, std::nan("")), expected);
     if (checker.fast_path_free(x, y)) {
       ASSERT_TRUE(expected) << "fast path unsound at " << x << ", " << y << ", " << theta;
       ++fast_count;

@@ -336,5 +336,25 @@ TEST(DistanceFieldTest, FollowsTheGridOrigin) {
   EXPECT_EQ(field.distance_m(1.0, 1.0), kInfinity);
 }
 
+TEST(DistanceFieldDescendTest, FollowsAShortestPathAroundAWall) {
+  // A wall from the bottom up to row 14 at x = 10; the target is on the other side at (15, 2).
+  OccupancyGrid grid = make_grid(20, 20, 0.1);
+  for (int y = 0; y <= 14; ++y) grid.set(10, y, Cell::kObstacle);
+  DistanceField field = make_field(grid);
+  field.compute(grid, std::vector<std::uint32_t>{grid.index(15, 2)});
+  const std::uint32_t from = grid.index(5, 2);
+  // Each step lowers the cost by a step of a shortest path; the end is as far down as asked.
+  const std::uint32_t drop = 5 * DistanceField::kOrthogonalCost;
+  const std::uint32_t a = field.descend(from, drop);
+  EXPECT_GE(field.cost_at(from) - field.cost_at(a), drop);
+  EXPECT_LT(field.cost_at(from) - field.cost_at(a), drop + DistanceField::kDiagonalCost);
+  // The path goes up and round the wall's top, not toward the target through the wall.
+  EXPECT_GT(grid.cell_y(a), 2);
+  // Asked for more than the path holds, it ends at the target.
+  EXPECT_EQ(field.descend(from, DistanceField::kUnreachable), grid.index(15, 2));
+  // An unreachable cell stays where it is.
+  EXPECT_EQ(field.descend(grid.index(10, 3), drop), grid.index(10, 3));
+}
+
 }  // namespace
 }  // namespace grip

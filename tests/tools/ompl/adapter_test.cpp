@@ -135,7 +135,7 @@ TYPED_TEST(OmplAdapter, PropagateWhileValidStopsWhereThePlannersCheckerSaysSo) {
   unsigned expected_valid = 0;
   for (; expected_valid < 200; ++expected_valid) {
     const auto next = p.vehicle.step(q, u, dt);
-    if (!p.planner->checker().is_free(next[0], next[1], next[2])) break;
+    if (!p.planner->chassis_free(next)) break;
     q = next;
   }
   ASSERT_LT(expected_valid, 200U) << "the maneuver was meant to reach the wall";
@@ -159,7 +159,7 @@ TYPED_TEST(OmplAdapter, TheValidityCheckerIsThePlannersCheckerWithItsMargin) {
   for (int i = 0; i < 2000; ++i) {
     sampler->sampleUniform(s);
     const auto q = to_core<TypeParam>(s);
-    const bool expected = p.planner->checker().is_free(q[0], q[1], q[2]);
+    const bool expected = p.planner->chassis_free(q);
     EXPECT_EQ(si->isValid(s), expected) << "at (" << q[0] << ", " << q[1] << ", " << q[2] << ")";
     free += expected ? 1 : 0;
   }

@@ -2,7 +2,7 @@
 // Path selection for exploration (the paper's Sec. IV): every root-to-state trajectory tr of the
 // planner's tree is a candidate; with d_max the sensing radius and c the target cells,
 //   d(tr, c) = rho_A*(q, c) for the state q of tr nearest to c among those that see c, else
-//              d_max + rho_A*(end of tr, F)
+//              d_max + rho(end of tr, F)
 //   d(tr)    = sum over c of d(tr, c)
 //   w(tr)    = d(tr) * exp(lambda * l(tr)),  l(tr) the length of tr,
 // and the selector returns the minimum-weight state at least T (min_step) from the root. The
@@ -11,8 +11,9 @@
 // the frontier is just in sight. Adding rho from the trajectory's end rewards each step toward
 // the cells it does not see yet; a seen cell still counts less than any unseen one. When no
 // state of the tree sees any target cell, d(tr) is instead rho at the end of tr: the planner's
-// rho_A* to its target set F (in exploration, the target group's approach cells,
-// exploration/frontier.hpp, within approach range of the frontier), and only trajectories that
+// rho to its target set F (Planner::rho_m: rho_A*, and for a car the turn it needs to head
+// along its path), in exploration the target group's approach cells within approach range of
+// the frontier (exploration/frontier.hpp), and only trajectories that
 // end closer to F than the root are candidates. Without that rule a car facing a dead end, whose
 // way out begins by backing away from F, would choose the shortest trajectory of at least T
 // cycle after cycle: it creeps, and every re-rooting throws away the tree's attempts at a way

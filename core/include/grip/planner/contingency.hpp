@@ -5,13 +5,15 @@
 #include <cmath>
 #include <cstdint>
 
+#include "grip/planner/step_margin.hpp"
 #include "grip/vehicles/vehicle.hpp"
 #include "grip/world/collision_checker.hpp"
 
 namespace grip {
 
 // Integrates the braking maneuver from q (assumed already checked) until the vehicle rests,
-// checking the chassis at every step; `checks` counts the collision checks made.
+// checking the chassis at every step with the margin of each state (state_collision_margin_m;
+// the checker's margin is the top speed's for dt); `checks` counts the collision checks made.
 template <VehicleModel V>
 bool contingency_is_collision_free(const V& vehicle, const CollisionChecker& checker,
                                    typename V::State q, double dt, std::uint64_t& checks) noexcept {
@@ -21,7 +23,10 @@ bool contingency_is_collision_free(const V& vehicle, const CollisionChecker& che
   for (std::uint32_t i = 0; i < max_steps && !vehicle.is_stopped(q); ++i) {
     q = vehicle.brake_step(q, dt);
     ++checks;
-    if (!checker.is_free(state_x(q), state_y(q), state_theta(q))) return false;
+    if (!checker.is_free(state_x(q), state_y(q), state_theta(q),
+                         state_collision_margin_m(vehicle, q, dt))) {
+      return false;
+    }
   }
   return vehicle.is_stopped(q);
 }

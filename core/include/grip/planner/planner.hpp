@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@
 #include "grip/planner/target_set.hpp"
 #include "grip/planner/tree.hpp"
 #include "grip/planner/tree_state.hpp"
+#include "grip/planner/turning_rho.hpp"
 #include "grip/vehicles/car.hpp"
 #include "grip/vehicles/dd_acceleration.hpp"
 #include "grip/vehicles/dd_velocity.hpp"
@@ -159,7 +161,21 @@ class Planner {
   const V& vehicle() const noexcept { return vehicle_; }
   const CollisionChecker& checker() const noexcept { return checker_; }
   const DistanceField& rho_field() const noexcept { return rho_field_; }
+  // [m] rho(q, F): rho_A* from rho_field(), and for a vehicle with a turning radius the turn
+  // q needs (PlannerConfig::rho_turning). Scores, the best state and path selection use it.
+  double rho_m(const State& q) const noexcept {
+    if (turning_rho_) {
+      return turning_rho_->at(rho_field_, state_x(q), state_y(q), state_theta(q));
+    }
+    return rho_field_.distance_m(state_x(q), state_y(q));
+  }
   double collision_margin_m() const noexcept { return checker_.margin(); }
+  // Whether the chassis at q is free as the planner checks it: grown by the margin of q's own
+  // speed (state_collision_margin_m), at most collision_margin_m().
+  bool chassis_free(const State& q) const noexcept {
+    return checker_.is_free(state_x(q), state_y(q), state_theta(q),
+                            state_collision_margin_m(vehicle_, q, config_.integration_step_s));
+  }
 
  private:
   struct Propagated {
@@ -175,7 +191,8 @@ class Planner {
   friend class Retainment<V>;
 
   Planner(const V& vehicle, const OccupancyGrid& grid, const PlannerConfig& config,
-          CollisionChecker checker, DistanceField field, BaselineSelection<V> baseline);
+          CollisionChecker checker, DistanceField field, BaselineSelection<V> baseline,
+          std::optional<TurningRho> turning_rho);
 
   bool iterate() noexcept;
   bool recycle_pool() noexcept;  // true if it made room
@@ -192,16 +209,14 @@ class Planner {
   Propagated propagate(TrajectoryHandle t, const State& from, std::uint32_t from_step,
                        const Control& u, std::uint32_t steps) noexcept;
   bool contingency_safe(const State& q) noexcept;
-  bool is_free(const State& q) noexcept;
+  bool is_free(const State& q) noexcept;  // chassis_free, counted in stats_
   double sampled_rho(EdgeHandle e, std::uint32_t stride, bool* in_goal) const noexcept;
   double score(const Edge& e) const noexcept;
   void push_scored(EdgeHandle e) noexcept;
   double step_time(std::uint32_t step) const noexcept {
     return static_cast<double>(step) * config_.integration_step_s;
   }
-  double rho_at(const State& q) const noexcept {
-    return rho_field_.distance_m(state_x(q), state_y(q));
-  }
+  double rho_at(const State& q) const noexcept { return rho_m(q); }
   void refresh_checker() noexcept;
 
   V vehicle_;
@@ -211,6 +226,7 @@ class Planner {
   CellBox changed_;  // note_changed() since the last refresh of the checker
   bool changed_noted_ = false;
   DistanceField rho_field_;
+  std::optional<TurningRho> turning_rho_;  // for a vehicle with a turning radius
   Tree<State> tree_;
   IndexedMinHeap heap_;  // GRIP's selection: the edges by score
   BaselineSelection<V> baseline_;

@@ -59,6 +59,10 @@ struct PlannerConfig {
   // leads through passages rather than along walls and around corners a vehicle cannot take.
   // States in such cells have rho = +infinity and are selected last. 0 = the plain grid.
   double rho_clearance_m = 0.3;
+  // For a vehicle with a minimum turning radius (the car): rho also counts the turn a state
+  // needs to head along its path (planner/turning_rho.hpp). Vehicles that turn in place have
+  // rho_A* alone either way.
+  bool rho_turning = true;
   // rho below this compares as equal in the score. In log space a metre near the goal would
   // otherwise outweigh hundreds of thousands of priority steps, and the search would keep
   // expanding states that pass the goal region at a speed that cannot turn into it.

@@ -16,15 +16,39 @@ inline double integration_step_for_cycle(double cycle_s) noexcept {
   return cycle_s / std::ceil(cycle_s / 0.05 - 1e-9);
 }
 
+// [m] The farthest chassis point from the reference point.
+template <VehicleModel V>
+double chassis_reach_m(const V& vehicle) noexcept {
+  const Footprint& f = vehicle.footprint();
+  return std::hypot(std::max(f.front_m, f.rear_m), f.half_width_m);
+}
+
 // [m] Half the largest motion of any chassis point during one step of dt_s: the reference
 // point moves at most max_speed * dt, a chassis point at distance `reach` from it at most
 // reach * max_turn_rate * dt more. Growing the chassis by this margin on every side, a check
 // every dt covers the whole trajectory (each point of it is within half a step of a check).
 template <VehicleModel V>
 double step_collision_margin_m(const V& vehicle, double dt_s) noexcept {
-  const Footprint& f = vehicle.footprint();
-  const double reach = std::hypot(std::max(f.front_m, f.rear_m), f.half_width_m);
-  return 0.5 * (vehicle.max_speed_m_s() * dt_s + reach * vehicle.max_turn_rate_rad_s() * dt_s);
+  return 0.5 * dt_s * (vehicle.max_speed_m_s() + chassis_reach_m(vehicle) * vehicle.max_turn_rate_rad_s());
+}
+
+// [m] The margin a check at state q needs: a check covers the motion within half a step before
+// and after it, and a vehicle whose velocities change at a bounded rate (BoundsMotionNearState)
+// moves then no faster than its bounds near q allow. At rest that is a small fraction of the
+// top speed's margin, so a slow vehicle fits where a fast one may not, as it does in reality.
+// Other models: step_collision_margin_m. Never more than it.
+template <VehicleModel V>
+double state_collision_margin_m(const V& vehicle, const typename V::State& q,
+                                double dt_s) noexcept {
+  if constexpr (BoundsMotionNearState<V>) {
+    const double tau = 0.5 * dt_s;
+    const double margin = tau * (vehicle.speed_bound_m_s(q, tau) +
+                                 chassis_reach_m(vehicle) * vehicle.turn_rate_bound_rad_s(q, tau));
+    const double full = step_collision_margin_m(vehicle, dt_s);
+    return margin < full ? margin : full;  // and full for a state that is not finite
+  } else {
+    return step_collision_margin_m(vehicle, dt_s);
+  }
 }
 
 }  // namespace grip

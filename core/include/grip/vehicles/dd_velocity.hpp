@@ -44,6 +44,7 @@ class DdVelocity {
   double max_stopping_time_s() const noexcept { return 0.0; }
   double max_speed_m_s() const noexcept { return params_.max_wheel_speed_m_s; }
   double max_turn_rate_rad_s() const noexcept { return params_.max_turn_rate_rad_s; }
+  double min_turning_radius_m() const noexcept { return 0.0; }
   const Footprint& footprint() const noexcept { return params_.footprint; }
   double speed_m_s(const State&) const noexcept { return 0.0; }  // speed lives in the control
   double speed_m_s(const State&, const Control& u) const noexcept;

@@ -46,6 +46,9 @@ concept VehicleModel = requires(const V& v, const typename V::State& q,
   { v.max_speed_m_s() } -> std::convertible_to<double>;
   { v.max_turn_rate_rad_s() } -> std::convertible_to<double>;
   { v.footprint() } -> std::convertible_to<Footprint>;
+  // The tightest turn of the reference point [m]; 0 for a vehicle that turns in place. The
+  // planner's rho respects it (planner/turning_rho.hpp).
+  { v.min_turning_radius_m() } -> std::convertible_to<double>;
   // |velocity| of the reference point [m/s], for reports and the speed profile.
   { v.speed_m_s(q) } -> std::convertible_to<double>;
   // Whether q is finite and within the model's state limits.
@@ -60,6 +63,18 @@ template <typename V>
 concept SteersToVelocityTarget = VehicleModel<V> &&
     requires(const V& v, const typename V::State& q, double hold_s, Random& rng) {
   { v.sample_control(q, hold_s, rng) } -> std::same_as<typename V::Control>;
+};
+
+// A model whose velocities change at a bounded rate (acceleration control), so that how fast
+// it can move near a state follows from the state: within tau of q, before or after, its
+// reference point moves no faster than speed_bound_m_s(q, tau) and it turns no faster than
+// turn_rate_bound_rad_s(q, tau). Collision checks between integration steps then need only the
+// margin of the state's own speed (planner/step_margin.hpp), not of the top speed.
+template <typename V>
+concept BoundsMotionNearState =
+    VehicleModel<V> && requires(const V& v, const typename V::State& q, double tau) {
+  { v.speed_bound_m_s(q, tau) } -> std::convertible_to<double>;
+  { v.turn_rate_bound_rad_s(q, tau) } -> std::convertible_to<double>;
 };
 
 // The explicit midpoint method (second order) for a model exposing derivative(q, u). Chosen

@@ -55,8 +55,15 @@ class CollisionChecker {
         return std::isfinite(theta_rad);
       }
     }
-    return covering_disks_or_exact(x_m, y_m, theta_rad);
+    return covering_disks_or_exact(x_m, y_m, theta_rad, margin_m_);
   }
+
+  // The same for the chassis grown by margin_m instead of margin(), up to margin() (a larger
+  // margin_m, or one not finite, checks with margin()): a vehicle moving slowly needs less
+  // margin between two checks than one at top speed (planner/step_margin.hpp). The fast tiers,
+  // built for margin(), answer "free" only where the larger chassis is free; the exact test
+  // decides the rest with the smaller one.
+  bool is_free(double x_m, double y_m, double theta_rad, double margin_m) const noexcept;
 
   // The exact path alone (what is_free answers when the fast path cannot decide).
   bool rectangle_is_free_exact(double x_m, double y_m, double theta_rad) const noexcept;
@@ -91,8 +98,10 @@ class CollisionChecker {
   void rebuild_bits(int y0, int y1) noexcept;  // rows y0..y1
   // Second tier: the grown rectangle is covered by disks along its axis; if the clearance map
   // clears every disk the answer is "free", else the exact test decides.
-  bool covering_disks_or_exact(double x_m, double y_m, double theta_rad) const noexcept;
-  bool exact(double x_m, double y_m, double c, double s) const noexcept;
+  bool covering_disks_or_exact(double x_m, double y_m, double theta_rad,
+                               double margin_m) const noexcept;
+  bool covering_disks_clear(double x_m, double y_m, double c, double s) const noexcept;
+  bool exact(double x_m, double y_m, double c, double s, double margin_m) const noexcept;
 
   static constexpr int kMaxDisks = 4;
   int disk_count_ = 1;
@@ -114,10 +123,6 @@ class CollisionChecker {
   double origin_x_m_;
   double origin_y_m_;
   double inv_resolution_;
-  // The grown rectangle in cells.
-  double front_cells_;
-  double rear_cells_;
-  double half_width_cells_;
 };
 
 }  // namespace grip

@@ -75,12 +75,23 @@ class DistanceField {
   bool reachable(std::uint32_t cell_index) const noexcept {
     return cost_at(cell_index) != kUnreachable;
   }
+  // The cell a shortest path from `cell_index` to the target set reaches once its cost has
+  // dropped by at least `cost_drop` (cost units), or the target it ends at when it is shorter:
+  // steepest descent, each step to the neighbour with the least cost plus step. `cell_index`
+  // itself when it is unreachable. O(steps); asserts cell_index < cell_count().
+  std::uint32_t descend(std::uint32_t cell_index, std::uint32_t cost_drop) const noexcept;
+  // The cell containing (x_m, y_m), or kNoCell outside the grid or not finite.
+  std::uint32_t cell_at(double x_m, double y_m) const noexcept;
+
   // Whether the last prepare()/compute() made this cell traversable.
   bool traversable(std::uint32_t cell_index) const noexcept;
 
   int width() const noexcept { return width_; }
   int height() const noexcept { return height_; }
   double resolution() const noexcept { return resolution_; }
+  // The grid's origin [m] as of the last prepare()/compute() (its cell (0, 0)'s lower corner).
+  double origin_x_m() const noexcept { return origin_x_m_; }
+  double origin_y_m() const noexcept { return origin_y_m_; }
   std::uint32_t cell_count() const noexcept {
     return static_cast<std::uint32_t>(width_) * static_cast<std::uint32_t>(height_);
   }
