@@ -226,8 +226,7 @@ class CoreValidityChecker : public ob::StateValidityChecker {
   bool isValid(const ob::State* state) const override {
     ++counters_->collision_checks;
     const typename V::State q = to_core<V>(state);
-    return checker_->is_free(state_x(q), state_y(q), state_theta(q),
-                             state_collision_margin_m(vehicle_, q, step_s_));
+    return chassis_free_at(vehicle_, *checker_, q, step_s_);
   }
 
  private:

@@ -82,8 +82,7 @@ PlanCheck check_plan(const V& vehicle, const CollisionChecker& fine_checker, con
   State q = start;
   // The margin of each state's own speed for a fine step, as the planners check theirs.
   const auto chassis_free = [&](const State& at) {
-    return fine_checker.is_free(state_x(at), state_y(at), state_theta(at),
-                                state_collision_margin_m(vehicle, at, fine_dt));
+    return chassis_free_at(vehicle, fine_checker, at, fine_dt);
   };
   if (!chassis_free(q)) {
     return fail("the start collides");

@@ -154,6 +154,13 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
                          std::uint32_t unseen, double length) {
     if (tree.step_of(e, k) < min_step) return;
     const double growth = std::exp(lambda * length);
+    // rho_A* bounds rho from below: a state that loses to both candidates even with it needs
+    // no more than that lookup.
+    const double rho_bound = planner.rho_a_star_m(q);
+    if ((d_sum + static_cast<double>(unseen) * rho_bound) * growth >= by_sight.weight &&
+        !(rho_bound < root_rho && rho_bound * growth < by_rho.weight)) {
+      return;
+    }
     const double rho_end = planner.rho_m(q);
     // A cell tr does not see lies d_max beyond the sensing disk of wherever tr ends: d_max plus
     // rho_A* from its end to F. With d_max alone, a trajectory seeing a few cells would lose to

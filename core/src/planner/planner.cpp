@@ -390,14 +390,20 @@ typename Planner<V>::Propagated Planner<V>::propagate(TrajectoryHandle t, const 
     }
     if (j % per_record != 0) continue;
     tree_.state(t, ++recorded) = q;
-    const double rho = rho_at(q);
-    out.rho_m = std::min(out.rho_m, rho);
     // Plans are chosen among states at least T from the root (they must cover the next cycle).
-    const double cost = rho + cost_speed_ * step_time(from_step + j);
-    if (from_step + j >= horizon_step_ && cost < out.best_cost_m) {
-      out.best_cost_m = cost;
-      out.best_rho_m = rho;
-      out.best_index = recorded;
+    // rho_A* bounds rho from below: a state it shows cannot lower the edge's rho or its best
+    // arrival needs no more than that lookup.
+    const bool may_arrive_best = from_step + j >= horizon_step_;
+    const double time_cost = cost_speed_ * step_time(from_step + j);
+    const double rho_bound = rho_a_star_m(q);
+    if (rho_bound < out.rho_m || (may_arrive_best && rho_bound + time_cost < out.best_cost_m)) {
+      const double rho = turning_rho_ ? rho_at(q) : rho_bound;
+      out.rho_m = std::min(out.rho_m, rho);
+      if (may_arrive_best && rho + time_cost < out.best_cost_m) {
+        out.best_cost_m = rho + time_cost;
+        out.best_rho_m = rho;
+        out.best_index = recorded;
+      }
     }
     if (out.goal_index == 0 && in_goal_region(q)) {
       out.goal_index = recorded;
@@ -452,7 +458,7 @@ double Planner<V>::sampled_rho(EdgeHandle e, std::uint32_t stride, bool* in_goal
   const int first = edge.parent == kNoHandle ? edge.first : edge.first + 1;
   for (int k = edge.last; k >= first; k -= static_cast<int>(stride)) {
     const State& q = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
-    rho = std::min(rho, rho_at(q));
+    if (rho_a_star_m(q) < rho) rho = std::min(rho, rho_at(q));  // rho_A* <= rho
     if (in_goal != nullptr && !*in_goal) *in_goal = in_goal_region(q);
   }
   return rho;

@@ -39,8 +39,10 @@ double TurningRho::at(const DistanceField& field, double x_m, double y_m,
   }
   const std::uint32_t ahead = lookahead_cell(field, cell);
   const auto w = static_cast<std::uint32_t>(field.width());
-  const double ax = field.origin_x_m() + (static_cast<double>(ahead % w) + 0.5) * field.resolution();
-  const double ay = field.origin_y_m() + (static_cast<double>(ahead / w) + 0.5) * field.resolution();
+  const double ax =
+      field.origin_x_m() + (static_cast<double>(ahead % w) + 0.5) * field.resolution();
+  const double ay =
+      field.origin_y_m() + (static_cast<double>(ahead / w) + 0.5) * field.resolution();
   // The lookahead cell in the vehicle's frame, its nearest point rather than its centre.
   const double c = std::cos(theta);
   const double s = std::sin(theta);

@@ -143,17 +143,6 @@ void CollisionChecker::rebuild_bits(int y0, int y1) noexcept {
   }
 }
 
-bool CollisionChecker::fast_path_free(double x_m, double y_m) const noexcept {
-  const double u = (x_m - origin_x_m_) * inv_resolution_;
-  const double v = (y_m - origin_y_m_) * inv_resolution_;
-  if (!(u >= 0.0 && v >= 0.0 && u < width_d_ && v < height_d_)) {
-    return false;
-  }
-  const auto cx = static_cast<std::uint32_t>(u);
-  const auto cy = static_cast<std::uint32_t>(v);
-  return ((fast_free_bits_[cy * words_per_row_ + (cx >> 6)] >> (cx & 63)) & 1) != 0;
-}
-
 bool CollisionChecker::rectangle_is_free_exact(double x_m, double y_m,
                                                double theta_rad) const noexcept {
   if (!(std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(theta_rad))) {

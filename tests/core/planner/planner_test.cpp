@@ -177,6 +177,28 @@ INSTANTIATE_TEST_SUITE_P(AllVehiclesAndPlanners, EndToEndSolveTest,
                            return name;
                          });
 
+// A corridor 0.56 m wide for a car 0.4 m wide: too narrow for the chassis grown by the margin of
+// its top speed (half a step's motion at 3 m/s and full lock, 0.14 m a side), wide enough for
+// the margin of the speed it can have there. The planner checks each state with its own.
+TEST(StateMargins, ACarPassesACorridorTooNarrowForTheTopSpeedsMargin) {
+  OccupancyGrid grid = OccupancyGrid::create(180, 60, 0.05, 0.0, 0.0, Cell::kFree).value();
+  grid.fill_rect(2.0, 0.0, 6.0, 1.22, Cell::kObstacle);
+  grid.fill_rect(2.0, 1.78, 6.0, 3.0, Cell::kObstacle);
+  const auto car = Car::create({}).value();
+  PlannerConfig config;
+  config.rho_clearance_m = 0.2;  // the corridor's centre line is 0.28 m from its walls
+  config.seed = 3;
+  auto planner = Planner<Car>::create(car, grid, config).value();
+  ASSERT_GT(2.0 * (car.footprint().half_width_m + planner.collision_margin_m()), 0.56);
+  EXPECT_FALSE(planner.checker().is_free(4.0, 1.5, 0.0));  // the top speed's margin
+  const auto start = car.rest_state(1.0, 1.5, 0.0);
+  const Goal goal = Goal::disk(8.0, 1.5, 0.4);
+  ASSERT_TRUE(planner.set_problem(start, goal));
+  const auto result = planner.solve([] { return false; });
+  ASSERT_EQ(result.status, SolveStatus::kExactSolution) << stop_reason_name(result.reason);
+  test::expect_solution_replays_into_goal(planner, start, goal);
+}
+
 TEST(RandomSelection, GrowsATreeOfDistinctEdgesWithoutReachingAFarGoalQuickly) {
   const OccupancyGrid grid = test::room_with_wall();
   const auto robot = DdAcceleration::create({}).value();

@@ -27,9 +27,8 @@ double corner_motion_m(const Footprint& f, const State& q, const State& p) {
   double most = 0.0;
   for (const auto& c : corners) {
     const auto at = [&](const State& s) {
-      return std::array<double, 2>{
-          s[0] + std::cos(s[2]) * c[0] - std::sin(s[2]) * c[1],
-          s[1] + std::sin(s[2]) * c[0] + std::cos(s[2]) * c[1]};
+      return std::array<double, 2>{s[0] + std::cos(s[2]) * c[0] - std::sin(s[2]) * c[1],
+                                   s[1] + std::sin(s[2]) * c[0] + std::cos(s[2]) * c[1]};
     };
     const auto a = at(q);
     const auto b = at(p);
@@ -56,8 +55,7 @@ void margins_cover_half_a_step(const V& vehicle, DrawState draw_state, DrawContr
     const double margin = state_collision_margin_m(vehicle, checked, kDt);
     ASSERT_LE(margin, step_collision_margin_m(vehicle, kDt));
     for (const auto& p : path) {
-      ASSERT_LE(corner_motion_m(vehicle.footprint(), checked, p), margin + 1e-9)
-          << "sample " << n;
+      ASSERT_LE(corner_motion_m(vehicle.footprint(), checked, p), margin + 1e-9) << "sample " << n;
     }
     smaller += margin < 0.5 * step_collision_margin_m(vehicle, kDt) ? 1 : 0;
   }

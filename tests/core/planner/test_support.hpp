@@ -48,8 +48,7 @@ void expect_solution_replays_into_goal(const Planner<V>& planner, const typename
     const long steps = std::lround(step.duration_s / dt);
     for (long i = 0; i < steps; ++i) {
       q = vehicle.step(q, u, dt);
-      ASSERT_TRUE(planner.chassis_free(q))
-          << "collision at (" << q[0] << ", " << q[1] << ")";
+      ASSERT_TRUE(planner.chassis_free(q)) << "collision at (" << q[0] << ", " << q[1] << ")";
     }
   }
   EXPECT_TRUE(goal.contains(q[0], q[1])) << "ended at (" << q[0] << ", " << q[1] << ")";

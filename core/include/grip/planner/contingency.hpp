@@ -23,10 +23,7 @@ bool contingency_is_collision_free(const V& vehicle, const CollisionChecker& che
   for (std::uint32_t i = 0; i < max_steps && !vehicle.is_stopped(q); ++i) {
     q = vehicle.brake_step(q, dt);
     ++checks;
-    if (!checker.is_free(state_x(q), state_y(q), state_theta(q),
-                         state_collision_margin_m(vehicle, q, dt))) {
-      return false;
-    }
+    if (!chassis_free_at(vehicle, checker, q, dt)) return false;
   }
   return vehicle.is_stopped(q);
 }

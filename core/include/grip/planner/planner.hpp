@@ -167,14 +167,17 @@ class Planner {
     if (turning_rho_) {
       return turning_rho_->at(rho_field_, state_x(q), state_y(q), state_theta(q));
     }
+    return rho_a_star_m(q);
+  }
+  // [m] rho_A* at q alone: a lower bound of rho_m(q), at the cost of one lookup.
+  double rho_a_star_m(const State& q) const noexcept {
     return rho_field_.distance_m(state_x(q), state_y(q));
   }
   double collision_margin_m() const noexcept { return checker_.margin(); }
   // Whether the chassis at q is free as the planner checks it: grown by the margin of q's own
   // speed (state_collision_margin_m), at most collision_margin_m().
   bool chassis_free(const State& q) const noexcept {
-    return checker_.is_free(state_x(q), state_y(q), state_theta(q),
-                            state_collision_margin_m(vehicle_, q, config_.integration_step_s));
+    return chassis_free_at(vehicle_, checker_, q, config_.integration_step_s);
   }
 
  private:

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "grip/vehicles/vehicle.hpp"
+#include "grip/world/collision_checker.hpp"
 
 namespace grip {
 
@@ -29,7 +30,8 @@ double chassis_reach_m(const V& vehicle) noexcept {
 // every dt covers the whole trajectory (each point of it is within half a step of a check).
 template <VehicleModel V>
 double step_collision_margin_m(const V& vehicle, double dt_s) noexcept {
-  return 0.5 * dt_s * (vehicle.max_speed_m_s() + chassis_reach_m(vehicle) * vehicle.max_turn_rate_rad_s());
+  return 0.5 * dt_s *
+         (vehicle.max_speed_m_s() + chassis_reach_m(vehicle) * vehicle.max_turn_rate_rad_s());
 }
 
 // [m] The margin a check at state q needs: a check covers the motion within half a step before
@@ -49,6 +51,15 @@ double state_collision_margin_m(const V& vehicle, const typename V::State& q,
   } else {
     return step_collision_margin_m(vehicle, dt_s);
   }
+}
+
+// Whether the chassis at q is free grown by q's own margin (state_collision_margin_m for a step
+// of dt_s, at most the checker's margin): the planner's test of every state it keeps.
+template <VehicleModel V>
+bool chassis_free_at(const V& vehicle, const CollisionChecker& checker, const typename V::State& q,
+                     double dt_s) noexcept {
+  return checker.is_free_with(state_x(q), state_y(q), state_theta(q),
+                              [&] { return state_collision_margin_m(vehicle, q, dt_s); });
 }
 
 }  // namespace grip

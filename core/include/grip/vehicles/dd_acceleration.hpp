@@ -63,9 +63,9 @@ class DdAcceleration {
                     params_.max_wheel_speed_m_s);
   }
   double turn_rate_bound_rad_s(const State& q, double tau) const noexcept {
-    return std::min((std::abs(q[4] - q[3]) + 2.0 * wheel_accel_bound() * tau) /
-                        (2.0 * params_.half_axle_m),
-                    params_.max_turn_rate_rad_s);
+    return std::min(
+        (std::abs(q[4] - q[3]) + 2.0 * wheel_accel_bound() * tau) / (2.0 * params_.half_axle_m),
+        params_.max_turn_rate_rad_s);
   }
   double speed_m_s(const State& q) const noexcept { return std::abs(0.5 * (q[3] + q[4])); }
   Status validate_state(const State& q) const;

@@ -71,8 +71,8 @@ concept SteersToVelocityTarget = VehicleModel<V> &&
 // turn_rate_bound_rad_s(q, tau). Collision checks between integration steps then need only the
 // margin of the state's own speed (planner/step_margin.hpp), not of the top speed.
 template <typename V>
-concept BoundsMotionNearState =
-    VehicleModel<V> && requires(const V& v, const typename V::State& q, double tau) {
+concept BoundsMotionNearState = VehicleModel<V> &&
+    requires(const V& v, const typename V::State& q, double tau) {
   { v.speed_bound_m_s(q, tau) } -> std::convertible_to<double>;
   { v.turn_rate_bound_rad_s(q, tau) } -> std::convertible_to<double>;
 };

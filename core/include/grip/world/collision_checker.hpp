@@ -45,16 +45,7 @@ class CollisionChecker {
   // True iff the grown chassis at (x_m, y_m, theta_rad) touches only known-free cells inside
   // the grid. Non-finite input is never free.
   bool is_free(double x_m, double y_m, double theta_rad) const noexcept {
-    const double u = (x_m - origin_x_m_) * inv_resolution_;
-    const double v = (y_m - origin_y_m_) * inv_resolution_;
-    if (u >= 0.0 && v >= 0.0 && u < width_d_ && v < height_d_) {
-      const auto cx = static_cast<std::uint32_t>(u);
-      const auto cy = static_cast<std::uint32_t>(v);
-      const std::uint64_t word = fast_free_bits_[cy * words_per_row_ + (cx >> 6)];
-      if (((word >> (cx & 63)) & 1) != 0) {
-        return std::isfinite(theta_rad);
-      }
-    }
+    if (fast_path_free(x_m, y_m)) return std::isfinite(theta_rad);
     return covering_disks_or_exact(x_m, y_m, theta_rad, margin_m_);
   }
 
@@ -64,12 +55,26 @@ class CollisionChecker {
   // built for margin(), answer "free" only where the larger chassis is free; the exact test
   // decides the rest with the smaller one.
   bool is_free(double x_m, double y_m, double theta_rad, double margin_m) const noexcept;
+  // The same with the margin computed by margin_of() (a double), called only when the fast
+  // path cannot decide: in open space the margin costs nothing.
+  template <typename MarginOf>
+  bool is_free_with(double x_m, double y_m, double theta_rad, MarginOf&& margin_of) const noexcept {
+    if (fast_path_free(x_m, y_m)) return std::isfinite(theta_rad);
+    return is_free(x_m, y_m, theta_rad, margin_of());
+  }
 
   // The exact path alone (what is_free answers when the fast path cannot decide).
   bool rectangle_is_free_exact(double x_m, double y_m, double theta_rad) const noexcept;
 
-  // True iff the fast path alone decides (x_m, y_m) is free for every heading.
-  bool fast_path_free(double x_m, double y_m) const noexcept;
+  // True iff the fast path alone decides (x_m, y_m) is free for every heading (and margin).
+  bool fast_path_free(double x_m, double y_m) const noexcept {
+    const double u = (x_m - origin_x_m_) * inv_resolution_;
+    const double v = (y_m - origin_y_m_) * inv_resolution_;
+    if (!(u >= 0.0 && v >= 0.0 && u < width_d_ && v < height_d_)) return false;
+    const auto cx = static_cast<std::uint32_t>(u);
+    const auto cy = static_cast<std::uint32_t>(v);
+    return ((fast_free_bits_[cy * words_per_row_ + (cx >> 6)] >> (cx & 63)) & 1) != 0;
+  }
 
   // Takes a new snapshot of the grid: recomputes the clearance map and the checker's bit grids
   // (O(cells), no allocation). Both paths answer for the grid as of the last refresh().
