@@ -94,8 +94,9 @@ double TurningDistance::at(double x_m, double y_m) const noexcept {
   const double u = std::abs(x_m) * inv_resolution_ + 0.5;
   const double v = std::abs(y_m) * inv_resolution_ + 0.5;
   if (!(u < side_ && v < side_)) return exact_m(radius_m_, std::abs(x_m), std::abs(y_m));
-  return lengths_[static_cast<std::size_t>(v) * static_cast<std::size_t>(side_) +
-                  static_cast<std::size_t>(u)];
+  return static_cast<double>(
+      lengths_[static_cast<std::size_t>(v) * static_cast<std::size_t>(side_) +
+               static_cast<std::size_t>(u)]);
 }
 
 }  // namespace grip
