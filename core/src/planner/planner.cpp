@@ -191,7 +191,7 @@ void Planner<V>::reset_tree(const State& q) noexcept {
   const EdgeHandle root = tree_.reset(q);
   Edge& r = tree_.edge(root);
   r.priority = 1.0;
-  r.rho_m = rho_at(q);
+  r.rho_m = rho_m(q);
   best_ = TreeState{root, 0};  // until a state at least T away exists
   best_rho_ = r.rho_m;
   best_cost_m_ = std::numeric_limits<double>::infinity();
@@ -397,7 +397,7 @@ typename Planner<V>::Propagated Planner<V>::propagate(TrajectoryHandle t, const 
     const double time_cost = cost_speed_ * step_time(from_step + j);
     const double rho_bound = rho_a_star_m(q);
     if (rho_bound < out.rho_m || (may_arrive_best && rho_bound + time_cost < out.best_cost_m)) {
-      const double rho = turning_rho_ ? rho_at(q) : rho_bound;
+      const double rho = turning_rho_ ? rho_m(q) : rho_bound;
       out.rho_m = std::min(out.rho_m, rho);
       if (may_arrive_best && rho + time_cost < out.best_cost_m) {
         out.best_cost_m = rho + time_cost;
@@ -420,7 +420,7 @@ typename Planner<V>::Propagated Planner<V>::propagate(TrajectoryHandle t, const 
       out.best_cost_m = std::numeric_limits<double>::infinity();
       out.best_index = 0;
       for (std::uint16_t k = 1; k <= recorded; ++k) {
-        const double rho = rho_at(tree_.state(t, k));
+        const double rho = rho_m(tree_.state(t, k));
         out.rho_m = std::min(out.rho_m, rho);
         const std::uint32_t step = from_step + k * per_record;
         const double cost = rho + cost_speed_ * step_time(step);
@@ -458,7 +458,7 @@ double Planner<V>::sampled_rho(EdgeHandle e, std::uint32_t stride, bool* in_goal
   const int first = edge.parent == kNoHandle ? edge.first : edge.first + 1;
   for (int k = edge.last; k >= first; k -= static_cast<int>(stride)) {
     const State& q = tree_.state(edge.trajectory, static_cast<std::uint32_t>(k));
-    if (rho_a_star_m(q) < rho) rho = std::min(rho, rho_at(q));  // rho_A* <= rho
+    if (rho_a_star_m(q) < rho) rho = std::min(rho, rho_m(q));  // rho_A* <= rho
     if (in_goal != nullptr && !*in_goal) *in_goal = in_goal_region(q);
   }
   return rho;

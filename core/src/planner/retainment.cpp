@@ -164,7 +164,7 @@ void Retainment<V>::prune_and_order(Planner<V>& p, EdgeHandle root, std::uint32_
     if (keep_[e] == 0) continue;
     Edge& edge = tree.edge(e);
     bool in_goal = false;
-    edge.rho_m = e == root ? p.rho_at(tree.edge_state(e, edge.last))
+    edge.rho_m = e == root ? p.rho_m(tree.edge_state(e, edge.last))
                            : p.sampled_rho(e, rescore_stride_, &in_goal);
     if (in_goal) {
       keep_[e] = static_cast<std::uint8_t>(keep_[e] | kInGoal);
@@ -319,7 +319,7 @@ void Retainment<V>::rescore_tree(Planner<V>& p, TreeState known_solution) noexce
     const Edge& edge = tree.edge(best_edge);
     for (int k = edge.first + 1; k <= edge.last; ++k) {
       const auto index = static_cast<std::uint16_t>(k);
-      const double rho = p.rho_at(tree.state(edge.trajectory, index));
+      const double rho = p.rho_m(tree.state(edge.trajectory, index));
       const std::uint32_t step = tree.step_of(best_edge, index);
       const double cost = rho + p.cost_speed_ * p.step_time(step);
       if (step >= p.horizon_step_ && cost < p.best_cost_m_) {

@@ -219,7 +219,6 @@ class Planner {
   double step_time(std::uint32_t step) const noexcept {
     return static_cast<double>(step) * config_.integration_step_s;
   }
-  double rho_at(const State& q) const noexcept { return rho_m(q); }
   void refresh_checker() noexcept;
 
   V vehicle_;
