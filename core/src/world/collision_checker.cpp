@@ -151,13 +151,6 @@ bool CollisionChecker::rectangle_is_free_exact(double x_m, double y_m,
   return exact(x_m, y_m, std::cos(theta_rad), std::sin(theta_rad), margin_m_);
 }
 
-bool CollisionChecker::is_free(double x_m, double y_m, double theta_rad,
-                               double margin_m) const noexcept {
-  if (!(margin_m >= 0.0 && margin_m < margin_m_)) margin_m = margin_m_;
-  if (fast_path_free(x_m, y_m)) return std::isfinite(theta_rad);
-  return covering_disks_or_exact(x_m, y_m, theta_rad, margin_m);
-}
-
 bool CollisionChecker::covering_disks_or_exact(double x_m, double y_m, double theta_rad,
                                                double margin_m) const noexcept {
   if (!(std::isfinite(x_m) && std::isfinite(y_m) && std::isfinite(theta_rad))) {
@@ -165,11 +158,6 @@ bool CollisionChecker::covering_disks_or_exact(double x_m, double y_m, double th
   }
   const double c = std::cos(theta_rad);
   const double s = std::sin(theta_rad);
-  return covering_disks_clear(x_m, y_m, c, s) || exact(x_m, y_m, c, s, margin_m);
-}
-
-bool CollisionChecker::covering_disks_clear(double x_m, double y_m, double c,
-                                            double s) const noexcept {
   const double px = (x_m - origin_x_m_) * inv_resolution_;
   const double py = (y_m - origin_y_m_) * inv_resolution_;
   bool all_clear = true;
@@ -180,7 +168,7 @@ bool CollisionChecker::covering_disks_clear(double x_m, double y_m, double c,
                 clearance_.squared_cells(static_cast<std::uint32_t>(v) * width_ +
                                          static_cast<std::uint32_t>(u)) > disk_free_d2_;
   }
-  return all_clear;
+  return all_clear || exact(x_m, y_m, c, s, margin_m);
 }
 
 bool CollisionChecker::exact(double x_m, double y_m, double c, double s,

@@ -54,13 +54,17 @@ class CollisionChecker {
   // margin between two checks than one at top speed (planner/step_margin.hpp). The fast tiers,
   // built for margin(), answer "free" only where the larger chassis is free; the exact test
   // decides the rest with the smaller one.
-  bool is_free(double x_m, double y_m, double theta_rad, double margin_m) const noexcept;
+  bool is_free(double x_m, double y_m, double theta_rad, double margin_m) const noexcept {
+    return is_free_with(x_m, y_m, theta_rad, [margin_m] { return margin_m; });
+  }
   // The same with the margin computed by margin_of() (a double), called only when the fast
   // path cannot decide: in open space the margin costs nothing.
   template <typename MarginOf>
   bool is_free_with(double x_m, double y_m, double theta_rad, MarginOf&& margin_of) const noexcept {
     if (fast_path_free(x_m, y_m)) return std::isfinite(theta_rad);
-    return is_free(x_m, y_m, theta_rad, margin_of());
+    const double margin_m = margin_of();
+    return covering_disks_or_exact(x_m, y_m, theta_rad,
+                                   margin_m >= 0.0 && margin_m < margin_m_ ? margin_m : margin_m_);
   }
 
   // The exact path alone (what is_free answers when the fast path cannot decide).
@@ -105,7 +109,6 @@ class CollisionChecker {
   // clears every disk the answer is "free", else the exact test decides.
   bool covering_disks_or_exact(double x_m, double y_m, double theta_rad,
                                double margin_m) const noexcept;
-  bool covering_disks_clear(double x_m, double y_m, double c, double s) const noexcept;
   bool exact(double x_m, double y_m, double c, double s, double margin_m) const noexcept;
 
   static constexpr int kMaxDisks = 4;
