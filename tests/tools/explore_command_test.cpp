@@ -37,9 +37,10 @@ nlohmann::json read_json(const std::string& path) {
 }
 
 void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
-  for (const char* key : {"result", "coverage", "collisions", "cycles", "deadline_misses",
-                          "sim_time_s", "distance_m", "mean_speed_fraction", "plans_received",
-                          "contingency_stops", "speed_profile", "retraced_fraction"}) {
+  for (const char* key :
+       {"result", "coverage", "collisions", "cycles", "deadline_misses", "sim_time_s", "distance_m",
+        "mean_speed_fraction", "plans_received", "contingency_stops", "speed_profile",
+        "retraced_fraction", "braking_bound_fraction", "without_plan_fraction"}) {
     ASSERT_TRUE(r.contains(key)) << key << "\n" << output;
   }
   const std::string result = r.at("result");
@@ -52,6 +53,12 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
   EXPECT_GE(r.at("retraced_fraction").get<double>(), 0.0);
   EXPECT_LT(r.at("retraced_fraction").get<double>(), 1.0);
   EXPECT_GT(r.at("speed_profile").size(), 100U);
+  // Braking within the sensed region allows something, never more than the top speed (1 for
+  // a vehicle that stops at once).
+  EXPECT_GT(r.at("braking_bound_fraction").get<double>(), 0.0);
+  EXPECT_LE(r.at("braking_bound_fraction").get<double>(), 1.0);
+  EXPECT_GE(r.at("without_plan_fraction").get<double>(), 0.0);
+  EXPECT_LT(r.at("without_plan_fraction").get<double>(), 1.0);
   // How much of the time the vehicle went faster than 50% and 80% of its maximum, per sample.
   const double max_speed = r.at("max_speed_m_s").get<double>();
   ASSERT_GT(max_speed, 0.0);

@@ -38,6 +38,7 @@ constexpr Rgb kSpeed{0, 102, 204};
 constexpr Rgb kAverage{204, 102, 0};
 constexpr Rgb kMaxLine{51, 51, 51};
 constexpr Rgb kCollision{255, 0, 0};
+constexpr Rgb kBrakingBound{51, 166, 51};
 
 // Where the chart puts a time and a speed, for an image of w x h pixels whose time axis ends at
 // t_max_s and whose fastest speed (the maximum, or a faster sample) is top_m_s.
@@ -209,6 +210,38 @@ TEST_F(RenderCommand, ASpeedStepIsDrawnAtBothHeightsAtTheirTimes) {
   expect_curve_at(img, l, l.x(7.5), l.y(2.4), kSpeed);
 }
 
+TEST_F(RenderCommand, TheBrakingBoundIsDrawnUnderTheSpeedAndSummarised) {
+  // The speed 0.6 m/s throughout; the bound 1.2 m/s for 5 s, then 2.4 m/s.
+  nlohmann::json j = report(ticks(200, [](double) { return 0.6; }));
+  nlohmann::json bound = nlohmann::json::array();
+  for (int i = 1; i <= 200; ++i) bound.push_back(i <= 100 ? 1.2 : 2.4);
+  j["braking_bound_profile"] = bound;
+  j["braking_bound_fraction"] = 0.6;
+  const std::string png = path("bound.png");
+  const CommandRun r = render(write_report("bound.json", j), png, "--smooth 0");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image img(png);
+  ASSERT_TRUE(img.ok());
+  const Layout l{1200, 500, 10.0, 3.0};
+  expect_curve_at(img, l, l.x(2.5), l.y(1.2), kBrakingBound);
+  expect_curve_at(img, l, l.x(7.5), l.y(2.4), kBrakingBound);
+  expect_curve_at(img, l, l.x(7.5), l.y(0.6), kSpeed);
+  EXPECT_NE(r.output.find("braking bound fraction (braking within the sensed region) 0.600"),
+            std::string::npos)
+      << r.output;
+  // Without one, nothing of its colour.
+  const std::string plain = path("no-bound.png");
+  ASSERT_EQ(render(write_report("no-bound.json", report(ticks(200, [](double) { return 0.6; }))),
+                   plain, "--smooth 0")
+                .status,
+            0);
+  const Image none(plain);
+  ASSERT_TRUE(none.ok());
+  EXPECT_TRUE(
+      none.rows_with(static_cast<int>(l.x(2.5)), kBrakingBound, l.plot_top(), l.plot_bottom())
+          .empty());
+}
+
 TEST_F(RenderCommand, ASingleSampleIsADot) {
   const std::string in = write_report("single.json", report({{0.0, 1.5}}));
   const std::string png = path("single.png");
@@ -303,6 +336,12 @@ TEST_F(RenderCommand, BadReportsAreRefusedNamingTheFileAndTheProblem) {
       {"collision", with("collision_events", json::parse(R"([{"x_m": 1.0}])")),
        "collision_events[0] has no numeric time_s"},
       {"robot", with("robot", 3), "robot is not a string"},
+      {"bound-count", with("braking_bound_profile", json::parse("[1.0, 1.0]")),
+       "braking_bound_profile has 2 samples, speed_profile 4"},
+      {"bound-negative", with("braking_bound_profile", json::parse("[1.0, 1.0, -1.0, 1.0]")),
+       "braking_bound_profile[2] is not a speed >= 0"},
+      {"bound-fraction", with("braking_bound_fraction", "high"),
+       "braking_bound_fraction is not a fraction >= 0"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);

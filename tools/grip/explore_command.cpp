@@ -124,6 +124,8 @@ nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
   j["distance_m"] = r.distance_m;
   j["retraced_fraction"] = r.retraced_fraction;
   j["mean_speed_fraction"] = r.mean_speed_fraction;
+  j["braking_bound_fraction"] = r.braking_bound_fraction;
+  j["without_plan_fraction"] = r.without_plan_fraction;
   j["plans_received"] = r.plans_received;
   j["plans_rejected"] = r.plans_rejected;
   j["contingency_stops"] = r.contingency_stops;
@@ -158,11 +160,14 @@ nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
                     {"target", {s.target_x_m, s.target_y_m}},
                     {"tree_edges", s.tree_edges}};
   }
-  // The velocity profile of the paper's Fig. 9, one sample per simulation tick, and how much of
-  // the time the vehicle went near its maximum speed (`grip render --speed-profile` draws it).
+  // The velocity profile of the paper's Fig. 9, one sample per simulation tick, the speed
+  // braking within the sensed region allowed at each (none for a vehicle that stops at once),
+  // and how much of the time the vehicle went near its maximum speed (`grip render
+  // --speed-profile` draws it).
   nlohmann::json profile = nlohmann::json::array();
   for (const auto& sample : r.speed_profile) profile.push_back({sample[0], sample[1]});
   j["speed_profile"] = profile;
+  j["braking_bound_profile"] = r.braking_bound_profile;
   if (r.max_speed_m_s > 0.0) {
     const SpeedProfileSummary speed = summarize_speed_profile(r.speed_profile, r.max_speed_m_s);
     j["time_fraction_above_50pct_max_speed"] = speed.fraction_above_50;
@@ -221,10 +226,11 @@ int finish(const ExploreOptions& o, const params::GripParams& p, const World& wo
             << ", collisions " << r.collisions << ", distance " << std::setprecision(1)
             << r.distance_m << " m (" << std::setprecision(2) << r.retraced_fraction
             << " of it retraced), mean speed " << std::setprecision(2) << r.mean_speed_fraction
-            << " of top\n  planner cycles " << r.cycles << ", deadline misses " << r.deadline_misses
-            << ", plans " << r.plans_received << " (rejected " << r.plans_rejected << ", "
-            << r.empty_plans << " empty, " << r.start_mismatches
-            << " refused: not starting where the vehicle was"
+            << " of top (braking within the sensed region allows " << r.braking_bound_fraction
+            << "; without a plan " << r.without_plan_fraction << " of the time)\n  planner cycles "
+            << r.cycles << ", deadline misses " << r.deadline_misses << ", plans "
+            << r.plans_received << " (rejected " << r.plans_rejected << ", " << r.empty_plans
+            << " empty, " << r.start_mismatches << " refused: not starting where the vehicle was"
             << (r.plans_dropped > 0 ? ", " + std::to_string(r.plans_dropped) + " dropped on purpose"
                                     : "")
             << "), contingency stops " << r.contingency_stops << "\n";
@@ -241,7 +247,8 @@ int finish(const ExploreOptions& o, const params::GripParams& p, const World& wo
     }
     // The whole process's (simulator, planner, DDS): what a map of this size costs in memory.
     rusage usage{};
-    if (getrusage(RUSAGE_SELF, &usage) == 0) j["peak_rss_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+    if (getrusage(RUSAGE_SELF, &usage) == 0)
+      j["peak_rss_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
     if (!link.is_null()) j["link"] = link;
     if (!write_report(command, o.report, std::move(j), 1)) return 1;
   }

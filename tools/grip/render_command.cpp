@@ -65,6 +65,10 @@ void print_summary(const RenderOptions& o, const SpeedReport& r, const SpeedProf
     std::cout << "  the report's mean speed fraction (since the first plan) "
               << fixed(r.mean_speed_fraction, 3) << "\n";
   }
+  if (r.braking_bound_fraction >= 0.0) {
+    std::cout << "  the report's braking bound fraction (braking within the sensed region) "
+              << fixed(r.braking_bound_fraction, 3) << "\n";
+  }
 }
 
 int run_render(const RenderOptions& o) {

@@ -96,6 +96,40 @@ Status read_profile(const nlohmann::json& report, std::vector<SpeedSample>& out)
   return Ok{};
 }
 
+// "braking_bound_profile": a speed per sample of the profile, at the sample's time.
+Status read_braking_bound(const nlohmann::json& report, const std::vector<SpeedSample>& profile,
+                          std::vector<SpeedSample>& out) {
+  const auto it = report.find("braking_bound_profile");
+  if (it == report.end()) return Ok{};
+  if (!it->is_array()) return parse_error("braking_bound_profile is not an array");
+  if (it->empty()) return Ok{};
+  if (it->size() != profile.size()) {
+    return parse_error("braking_bound_profile has " + std::to_string(it->size()) +
+                       " samples, speed_profile " + std::to_string(profile.size()));
+  }
+  out.reserve(it->size());
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const nlohmann::json& e = (*it)[i];
+    if (!e.is_number() || !std::isfinite(e.get<double>()) || e.get<double>() < 0.0) {
+      return parse_error("braking_bound_profile[" + std::to_string(i) +
+                         "] is not a speed >= 0: " + e.dump());
+    }
+    out.push_back({profile[i][0], e.get<double>()});
+  }
+  return Ok{};
+}
+
+// A fraction >= 0 when present; `out` untouched when absent.
+Status read_fraction(const nlohmann::json& report, const char* key, double& out) {
+  const auto f = report.find(key);
+  if (f == report.end()) return Ok{};
+  if (!f->is_number() || !std::isfinite(f->get<double>()) || f->get<double>() < 0.0) {
+    return parse_error(std::string(key) + " is not a fraction >= 0: " + f->dump());
+  }
+  out = f->get<double>();
+  return Ok{};
+}
+
 Status read_collisions(const nlohmann::json& report, std::vector<double>& out) {
   const auto it = report.find("collision_events");
   if (it == report.end()) return Ok{};
@@ -132,11 +166,12 @@ Result<SpeedReport> speed_report_from_json(const nlohmann::json& report) {
                                  std::pair{"result", &r.result}}) {
     if (Status s = read_text(report, key, *out); !s) return s.error();
   }
-  if (const auto f = report.find("mean_speed_fraction"); f != report.end()) {
-    if (!f->is_number() || !std::isfinite(f->get<double>()) || f->get<double>() < 0.0) {
-      return parse_error("mean_speed_fraction is not a fraction >= 0: " + f->dump());
-    }
-    r.mean_speed_fraction = f->get<double>();
+  if (Status s = read_fraction(report, "mean_speed_fraction", r.mean_speed_fraction); !s) {
+    return s.error();
+  }
+  if (Status s = read_braking_bound(report, r.profile, r.braking_bound); !s) return s.error();
+  if (Status s = read_fraction(report, "braking_bound_fraction", r.braking_bound_fraction); !s) {
+    return s.error();
   }
   return r;
 }

@@ -45,6 +45,10 @@ struct SpeedReport {
   std::string world;
   std::string result;
   double mean_speed_fraction = -1.0;  // the report's (since the first plan); < 0: absent
+  // The speed braking within the sensed region allowed at each sample's time (finite, >= 0;
+  // sim/braking_bound.hpp); empty when the report has none (a vehicle that stops at once).
+  std::vector<SpeedSample> braking_bound;
+  double braking_bound_fraction = -1.0;  // the report's; < 0: absent
 };
 
 // Reads and checks the fields above. Errors (kParse) say what is wrong and where, e.g.

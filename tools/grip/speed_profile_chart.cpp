@@ -22,6 +22,7 @@ constexpr Rgb kSpeedColour{0.0, 0.4, 0.8};
 constexpr Rgb kAverageColour{0.8, 0.4, 0.0};
 constexpr Rgb kMaxColour{0.2, 0.2, 0.2};
 constexpr Rgb kCollisionColour{1.0, 0.0, 0.0};
+constexpr Rgb kBrakingBoundColour{0.2, 0.65, 0.2};
 constexpr Rgb kGridColour{0.88, 0.88, 0.88};
 
 void set_colour(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
@@ -135,6 +136,7 @@ void draw_legend(cairo_t* cr, const SpeedReport& r, const SpeedProfileSummary& s
     x += 32.0 + draw_text(cr, label, x + 32.0, y, 12.0, false) + 24.0;
   };
   swatch(kSpeedColour, 2.0, false, "speed");
+  if (!r.braking_bound.empty()) swatch(kBrakingBoundColour, 2.0, false, "braking bound");
   if (o.smooth_s > 0.0) swatch(kAverageColour, 2.5, false, tick_label(o.smooth_s) + " s average");
   swatch(kMaxColour, 1.5, true, "maximum " + tick_label(r.max_speed_m_s) + " m/s");
   if (!r.collision_times_s.empty()) {
@@ -145,6 +147,9 @@ void draw_legend(cairo_t* cr, const SpeedReport& r, const SpeedProfileSummary& s
   std::string mean = "mean speed " + fixed(s.mean_fraction, 2) + " of the maximum";
   if (r.mean_speed_fraction >= 0.0) {
     mean += " (report: " + fixed(r.mean_speed_fraction, 2) + " since the first plan)";
+  }
+  if (r.braking_bound_fraction >= 0.0 && !r.braking_bound.empty()) {
+    mean += ", bound " + fixed(r.braking_bound_fraction, 2);
   }
   draw_text(cr, mean, x, y, 12.0, true);
 }
@@ -197,6 +202,10 @@ Status write_speed_profile_png(const SpeedReport& report, const SpeedProfileSumm
   cairo_save(cr);
   cairo_rectangle(cr, axes.area.left_px, axes.area.top_px, axes.area.width_px, axes.area.height_px);
   cairo_clip(cr);
+  // The bound under the speed: where they meet, the vehicle drove as fast as braking allowed.
+  if (!report.braking_bound.empty()) {
+    draw_curve(cr, axes, report.braking_bound, kBrakingBoundColour, 2.0);
+  }
   draw_curve(cr, axes, report.profile, kSpeedColour, 2.0);
   if (options.smooth_s > 0.0) {
     draw_curve(cr, axes, moving_average(report.profile, options.smooth_s), kAverageColour, 2.5);

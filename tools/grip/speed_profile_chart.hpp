@@ -1,7 +1,7 @@
 #pragma once
 // The velocity profile of the paper's Fig. 9 as a PNG: speed over simulated time, the vehicle's
-// maximum speed as a dashed line, a moving average, and every collision marked in red on the
-// time axis.
+// maximum speed as a dashed line, a moving average, the speed braking within the sensed region
+// allowed (when the report has it), and every collision marked in red on the time axis.
 //
 // The layout, for whoever reads the picture back (tests do):
 //   plot area: left 70 px, top 64 px, right margin 25 px, bottom margin 56 px;
@@ -9,7 +9,8 @@
 //      (1 s when both are 0); y: 0 at the bottom edge to 1.15 x max(maximum speed, fastest
 //      sample) at the top;
 //   colours (RGB, 0-255): speed (0, 102, 204), moving average (204, 102, 0), maximum speed
-//      dashed (51, 51, 51), collisions (255, 0, 0), drawn last so that nothing hides them.
+//      dashed (51, 51, 51), braking bound (51, 166, 51) drawn under the speed, collisions
+//      (255, 0, 0), drawn last so that nothing hides them.
 
 #include <string>
 

@@ -11,6 +11,7 @@
 #include "grip/common/saturating_cast.hpp"
 #include "grip/link/vehicle_link.hpp"
 #include "grip/platform/clock.hpp"
+#include "grip/sim/braking_bound.hpp"
 #include "grip/sim/coverage.hpp"
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/range_sensor.hpp"
@@ -23,6 +24,24 @@ namespace {
 
 // Simulated time on the wire starts here rather than at 0: a stamp of 0 reads as "never".
 constexpr std::int64_t kEpochNs = 1'000'000'000;
+
+// braking_bound_m_s for the route of a vehicle that brakes at a bounded rate; none for one
+// that stops at once.
+template <VehicleModel V>
+Result<std::vector<double>> braking_bound_of(const V& vehicle,
+                                             std::span<const std::array<double, 2>> route,
+                                             std::span<const double> headings,
+                                             const OccupancyGrid& grid, const SensedTicks& sensed,
+                                             double step_s) {
+  if constexpr (LimitsAcceleration<V>) {
+    const SpeedLimits limits{vehicle.max_speed_m_s(), vehicle.accel_bound_m_s2(),
+                             vehicle.braking_decel_m_s2()};
+    return braking_bound_m_s(route, headings, grid, sensed.ticks(), vehicle.footprint(), limits,
+                             step_s);
+  } else {
+    return std::vector<double>{};
+  }
+}
 
 template <VehicleModel V>
 Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
@@ -83,9 +102,12 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     state_msg.map_sequence = (*link)->map_sender().last_sequence();
     static_cast<void>((*link)->publish_state(state_msg));
   };
+  SensedTicks sensed_ticks(sensed);
+  std::uint64_t tick = 0;
   const auto sense = [&] {
     const State& q = executor->state();
     const SenseResult seen = sensor->sense(state_x(q), state_y(q), sensed);
+    sensed_ticks.mark(seen.changed_cells, static_cast<std::uint32_t>(tick));
     if (!seen.changed.empty()) {
       (*link)->publish_map_updates(seen.changed, static_cast<std::uint64_t>(executor->now_ns()));
     }
@@ -128,14 +150,19 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   bool planner_alive = false;
   std::optional<grip_msg_PlannerStatus> status;
   const std::int64_t wall0 = platform::now_ns();
-  std::uint64_t tick = 0;
+  std::uint64_t ticks_without_plan = 0;
+  std::vector<double> headings;  // the chassis's, per tick as report.trajectory
   // One integration step of the vehicle: plans take effect, it moves, senses, is recorded.
   const auto advance = [&] {
     ++tick;
     executor->step();
+    if (executor->stats().plans_started > 0 && executor->mode() != ExecutorMode::kExecuting) {
+      ++ticks_without_plan;
+    }
     sense();
     const State& q = executor->state();
     report.trajectory.push_back({state_x(q), state_y(q)});
+    headings.push_back(state_theta(q));
     report.speed_profile.push_back({t_sim(), executor->speed_m_s()});
     if (tick % 20 == 0) {
       const double coverage = coverage_of(sensed, *reachable);
@@ -292,6 +319,25 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   report.distance_m = stats.distance_m;
   report.retraced_fraction = retraced_distance(report.trajectory, radius / 4.0, radius).fraction();
   report.mean_speed_fraction = executor->mean_speed_fraction();
+  if (stats.speed_ticks > 0) {
+    report.without_plan_fraction =
+        static_cast<double>(ticks_without_plan) / static_cast<double>(stats.speed_ticks);
+  }
+  auto bound = braking_bound_of(vehicle, report.trajectory, headings, sensed, sensed_ticks, dt);
+  if (!bound) return bound.error();
+  report.braking_bound_profile = std::move(bound).value();
+  report.braking_bound_fraction = 1.0;
+  if (!report.braking_bound_profile.empty() && stats.speed_ticks > 0) {
+    // Over the ticks since the first plan, as the mean speed.
+    double sum = 0.0;
+    for (auto it =
+             report.braking_bound_profile.end() - static_cast<std::ptrdiff_t>(stats.speed_ticks);
+         it != report.braking_bound_profile.end(); ++it) {
+      sum += *it;
+    }
+    report.braking_bound_fraction =
+        sum / static_cast<double>(stats.speed_ticks) / vehicle.max_speed_m_s();
+  }
   report.contingency_stops = stats.contingencies;
   report.start_mismatches = stats.plans_refused;
   report.max_start_error_m = stats.max_start_position_error_m;

@@ -70,13 +70,17 @@ class Car {
   // BoundsMotionNearState: |v| and |delta| change at most at the larger of the acceleration
   // and braking bounds and at the steering rate.
   double speed_bound_m_s(const State& q, double tau) const noexcept {
-    const double accel = std::max(params_.max_accel_m_s2, params_.braking_decel_m_s2);
-    return std::min(std::abs(q[3]) + accel * tau, max_speed_m_s());
+    return std::min(std::abs(q[3]) + accel_bound_m_s2() * tau, max_speed_m_s());
   }
   double turn_rate_bound_rad_s(const State& q, double tau) const noexcept {
     const double steer =
         std::min(std::abs(q[4]) + params_.max_steer_rate_rad_s * tau, params_.max_steer_rad);
     return speed_bound_m_s(q, tau) * std::sin(steer) / params_.wheelbase_m;
+  }
+  // LimitsAcceleration.
+  double braking_decel_m_s2() const noexcept { return params_.braking_decel_m_s2; }
+  double accel_bound_m_s2() const noexcept {
+    return std::max(params_.max_accel_m_s2, params_.braking_decel_m_s2);
   }
   double speed_m_s(const State& q) const noexcept { return std::abs(q[3]); }
   Status validate_state(const State& q) const;

@@ -59,13 +59,18 @@ class DdAcceleration {
   // BoundsMotionNearState: each wheel's speed changes at most at the larger of the acceleration
   // and braking bounds.
   double speed_bound_m_s(const State& q, double tau) const noexcept {
-    return std::min(0.5 * (std::abs(q[3]) + std::abs(q[4])) + wheel_accel_bound() * tau,
+    return std::min(0.5 * (std::abs(q[3]) + std::abs(q[4])) + accel_bound_m_s2() * tau,
                     params_.max_wheel_speed_m_s);
   }
   double turn_rate_bound_rad_s(const State& q, double tau) const noexcept {
     return std::min(
-        (std::abs(q[4] - q[3]) + 2.0 * wheel_accel_bound() * tau) / (2.0 * params_.half_axle_m),
+        (std::abs(q[4] - q[3]) + 2.0 * accel_bound_m_s2() * tau) / (2.0 * params_.half_axle_m),
         params_.max_turn_rate_rad_s);
+  }
+  // LimitsAcceleration: of the faster wheel, which bounds the reference point's speed.
+  double braking_decel_m_s2() const noexcept { return params_.braking_decel_m_s2; }
+  double accel_bound_m_s2() const noexcept {
+    return std::max(params_.max_wheel_accel_m_s2, params_.braking_decel_m_s2);
   }
   double speed_m_s(const State& q) const noexcept { return std::abs(0.5 * (q[3] + q[4])); }
   Status validate_state(const State& q) const;
@@ -79,9 +84,6 @@ class DdAcceleration {
 
  private:
   explicit DdAcceleration(const DdAccelerationParams& params) : params_(params) {}
-  double wheel_accel_bound() const noexcept {
-    return std::max(params_.max_wheel_accel_m_s2, params_.braking_decel_m_s2);
-  }
   DdAccelerationParams params_;
 };
 

@@ -77,6 +77,15 @@ concept BoundsMotionNearState = VehicleModel<V> &&
   { v.turn_rate_bound_rad_s(q, tau) } -> std::convertible_to<double>;
 };
 
+// A model that speeds up and brakes at bounded rates: how fast it could drive toward space it
+// has not sensed, and still stop inside what it has, follows from them (sim/braking_bound.hpp).
+// Both bound the reference point's speed; plans may hold either.
+template <typename V>
+concept LimitsAcceleration = VehicleModel<V> && requires(const V& v) {
+  { v.braking_decel_m_s2() } -> std::convertible_to<double>;  // the contingency's [m/s^2]
+  { v.accel_bound_m_s2() } -> std::convertible_to<double>;    // the larger of the two [m/s^2]
+};
+
 // The explicit midpoint method (second order) for a model exposing derivative(q, u). Chosen
 // over RK4 for cost: the planner integrates millions of
 // steps and the derivatives are dominated by sin/cos; at the default 0.05 s step the position

@@ -109,6 +109,12 @@ struct SimRunReport {
   // squares of a quarter of the sensor radius, entered again at least a sensor radius later).
   double retraced_fraction = 0.0;
   double mean_speed_fraction = 0.0;
+  // Since the first plan, as mean_speed_fraction: the mean of the speed braking within the
+  // sensed region allows on the route driven (sim/braking_bound.hpp) over the top speed (1 for
+  // a vehicle that stops at once), and the share of ticks the vehicle braked or stood for want
+  // of a plan (the last plan ran out or the planner fell silent).
+  double braking_bound_fraction = 0.0;
+  double without_plan_fraction = 0.0;
   std::uint64_t plans_received = 0;
   std::uint64_t plans_rejected = 0;
   std::uint64_t plans_dropped = 0;  // lost on purpose (SimRunConfig::drop_plans)
@@ -124,6 +130,7 @@ struct SimRunReport {
   double wall_time_s = 0.0;
   std::vector<std::array<double, 2>> trajectory;     // (x, y) per tick
   std::vector<std::array<double, 2>> speed_profile;  // (t, |v|) per tick
+  std::vector<double> braking_bound_profile;         // [m/s] per tick; empty: stops at once
   double max_speed_m_s = 0.0;
   std::optional<OccupancyGrid> known;  // what was sensed
   std::optional<grip_msg_PlannerStatus> last_status;
