@@ -13,6 +13,7 @@
 #include "grip/rt/exploration_driver.hpp"
 #include "grip/rt/replanning_session.hpp"
 #include "grip/sim/plan_executor.hpp"
+#include "grip/vehicles/car.hpp"
 #include "grip/vehicles/dd_velocity.hpp"
 
 namespace grip::rt {
@@ -26,6 +27,7 @@ struct ExplorationReport {
   double coverage = 0.0;   // known cells among the truly free cells reachable from the start
   double distance_m = 0.0;
   double mean_speed_fraction = 0.0;  // distance / (cycles x T x top speed)
+  double slowest_m_s = 0.0;          // the most negative forward speed seen (reversing)
 };
 
 // Reveals the true value of every cell within radius_m of (x, y) whose centre is in sight: the
@@ -135,6 +137,9 @@ ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double s
       executor.submit(sent.steps, start_ns, sent.from, sent.cycle);
     }
     executor.run_until(executor.now_ns() + cycle_ns);
+    if constexpr (V::kKind == VehicleKind::kCar) {
+      report.slowest_m_s = std::min(report.slowest_m_s, executor.state()[3]);
+    }
   }
   report.collisions = static_cast<int>(executor.stats().collisions);
   report.distance_m = executor.stats().distance_m;
@@ -182,6 +187,28 @@ TEST(ExplorationRun, AVelocityControlledRobotExploresASmallSceneWithoutCollision
   EXPECT_TRUE(r.complete);
   EXPECT_EQ(r.collisions, 0);
   EXPECT_GE(r.coverage, 0.97);
+}
+
+// A room (x < 5 m) and, off it, a corridor 1.4 m wide and 8.7 m long ending in a wall.
+OccupancyGrid dead_end_scene() {
+  OccupancyGrid grid = OccupancyGrid::create(140, 60, 0.1, 0.0, 0.0, Cell::kObstacle).value();
+  grid.fill_rect(0.3, 0.3, 5.0, 5.7, Cell::kFree);
+  grid.fill_rect(5.0, 2.3, 13.7, 3.7, Cell::kFree);
+  return grid;
+}
+
+TEST(ExplorationRun, ACarFacingTheEndOfACorridorTooNarrowToTurnInGetsOutAndExplores) {
+  // The car stands 0.6 m from the corridor's end, facing it. Turning round needs about 1.8 m
+  // (the front corner's circle at full lock, 0.9 m in radius, beside the rear corner's): it
+  // must reverse, whether to turn in several moves or to back out.
+  const OccupancyGrid truth = dead_end_scene();
+  const Car car = Car::create({}).value();
+  const ExplorationReport r = explore(car, truth, 12.5, 3.0, 0.0, 6000);
+  print("dead-end", "car", r);
+  EXPECT_TRUE(r.complete);
+  EXPECT_EQ(r.collisions, 0);
+  EXPECT_GE(r.coverage, 0.97);
+  EXPECT_LT(r.slowest_m_s, -0.1) << "the car never reversed";
 }
 
 }  // namespace
