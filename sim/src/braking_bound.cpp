@@ -58,12 +58,13 @@ Result<std::vector<double>> braking_bound_m_s(std::span<const std::array<double,
                                               std::span<const std::uint32_t> sensed,
                                               const Footprint& footprint, const SpeedLimits& limits,
                                               double step_s) {
-  if (!positive(limits.max_speed_m_s) || !positive(limits.accel_m_s2) ||
-      !positive(limits.braking_decel_m_s2) || !positive(step_s)) {
+  if (!positive(limits.max_speed_m_s) || !positive(limits.max_reverse_speed_m_s) ||
+      !positive(limits.accel_m_s2) || !positive(limits.braking_decel_m_s2) || !positive(step_s)) {
     return invalid_argument(
-        "braking bound: speed, acceleration, braking deceleration and step must be finite and "
-        "> 0 (got " +
-        std::to_string(limits.max_speed_m_s) + ", " + std::to_string(limits.accel_m_s2) + ", " +
+        "braking bound: top speeds, acceleration, braking deceleration and step must be finite "
+        "and > 0 (got " +
+        std::to_string(limits.max_speed_m_s) + ", " + std::to_string(limits.max_reverse_speed_m_s) +
+        ", " + std::to_string(limits.accel_m_s2) + ", " +
         std::to_string(limits.braking_decel_m_s2) + ", " + std::to_string(step_s) + ")");
   }
   if (headings.size() != route.size()) {
@@ -93,17 +94,21 @@ Result<std::vector<double>> braking_bound_m_s(std::span<const std::array<double,
     at_waypoint[k] = static_cast<std::uint32_t>(waypoints.size() - 1);
   }
   // Where the route reverses: the direction of travel turns by more than a right angle from
-  // one move to the next (moves of zero length do not count).
+  // one move to the next (moves of zero length do not count). Which ticks back up: their move
+  // goes against the heading (a tick that does not move keeps its predecessor's).
   std::vector<double> cusp_arcs;
+  std::vector<bool> backing(route.size(), false);
   std::array<double, 2> last_move{0.0, 0.0};
   for (std::size_t k = 1; k < route.size(); ++k) {
     const std::array<double, 2> move{route[k][0] - route[k - 1][0], route[k][1] - route[k - 1][1]};
+    backing[k] = backing[k - 1];
     if (move[0] == 0.0 && move[1] == 0.0) continue;
     if (move[0] * last_move[0] + move[1] * last_move[1] < 0.0) cusp_arcs.push_back(arc[k - 1]);
+    backing[k] = move[0] * std::cos(headings[k]) + move[1] * std::sin(headings[k]) < 0.0;
     last_move = move;
   }
-  const double top = limits.max_speed_m_s;
-  const double stopping_m = top * top / (2.0 * limits.braking_decel_m_s2);
+  const double fastest = std::max(limits.max_speed_m_s, limits.max_reverse_speed_m_s);
+  const double stopping_m = fastest * fastest / (2.0 * limits.braking_decel_m_s2);
   std::vector<double> bound(route.size());
   double previous = 0.0;
   std::size_t next_cusp = 0;
@@ -121,6 +126,7 @@ Result<std::vector<double>> braking_bound_m_s(std::span<const std::array<double,
         break;
       }
     }
+    const double top = backing[k] ? limits.max_reverse_speed_m_s : limits.max_speed_m_s;
     const double v = std::min({top, std::sqrt(2.0 * limits.braking_decel_m_s2 * free_m),
                                previous + limits.accel_m_s2 * step_s});
     bound[k] = v;

@@ -15,7 +15,8 @@ namespace {
 
 using Route = std::vector<std::array<double, 2>>;
 
-constexpr SpeedLimits kLimits{3.0, 0.6, 0.6};  // the car's: stops from 3 m/s in 7.5 m
+// The car's: stops from 3 m/s in 7.5 m, backs up at 0.5 m/s at most.
+constexpr SpeedLimits kLimits{3.0, 0.5, 0.6, 0.6};
 constexpr double kStep = 0.05;                 // a speed gain of 0.03 m/s per tick at most
 
 // 10 m x 2 m at 0.1 m; every cell sensed at tick `tick`, those with x >= unknown_from_m at
@@ -121,7 +122,7 @@ TEST(BrakingBound, BadInputIsNamed) {
             std::string::npos)
       << short_ticks.error().message;
   const auto no_brakes = braking_bound_m_s(r, facing_x(r), s.grid, s.ticks, kChassis,
-                                           SpeedLimits{3.0, 0.6, 0.0}, kStep);
+                                           SpeedLimits{3.0, 0.5, 0.6, 0.0}, kStep);
   ASSERT_FALSE(no_brakes.ok());
   EXPECT_NE(no_brakes.error().message.find("braking deceleration"), std::string::npos);
   const std::vector<double> headings(3, 0.0);

@@ -34,8 +34,8 @@ Result<std::vector<double>> braking_bound_of(const V& vehicle,
                                              const OccupancyGrid& grid, const SensedTicks& sensed,
                                              double step_s) {
   if constexpr (LimitsAcceleration<V>) {
-    const SpeedLimits limits{vehicle.max_speed_m_s(), vehicle.accel_bound_m_s2(),
-                             vehicle.braking_decel_m_s2()};
+    const SpeedLimits limits{vehicle.max_speed_m_s(), vehicle.max_reverse_speed_m_s(),
+                             vehicle.accel_bound_m_s2(), vehicle.braking_decel_m_s2()};
     return braking_bound_m_s(route, headings, grid, sensed.ticks(), vehicle.footprint(), limits,
                              step_s);
   } else {

@@ -82,6 +82,7 @@ class Car {
   double accel_bound_m_s2() const noexcept {
     return std::max(params_.max_accel_m_s2, params_.braking_decel_m_s2);
   }
+  double max_reverse_speed_m_s() const noexcept { return -params_.min_speed_m_s; }
   double speed_m_s(const State& q) const noexcept { return std::abs(q[3]); }
   Status validate_state(const State& q) const;
   Status validate_control(const Control& u) const;

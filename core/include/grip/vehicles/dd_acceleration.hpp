@@ -72,6 +72,7 @@ class DdAcceleration {
   double accel_bound_m_s2() const noexcept {
     return std::max(params_.max_wheel_accel_m_s2, params_.braking_decel_m_s2);
   }
+  double max_reverse_speed_m_s() const noexcept { return params_.max_wheel_speed_m_s; }
   double speed_m_s(const State& q) const noexcept { return std::abs(0.5 * (q[3] + q[4])); }
   Status validate_state(const State& q) const;
   Status validate_control(const Control& u) const;

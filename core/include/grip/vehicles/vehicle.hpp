@@ -84,6 +84,7 @@ template <typename V>
 concept LimitsAcceleration = VehicleModel<V> && requires(const V& v) {
   { v.braking_decel_m_s2() } -> std::convertible_to<double>;  // the contingency's [m/s^2]
   { v.accel_bound_m_s2() } -> std::convertible_to<double>;    // the larger of the two [m/s^2]
+  { v.max_reverse_speed_m_s() } -> std::convertible_to<double>;  // backing up [m/s], > 0
 };
 
 // The explicit midpoint method (second order) for a model exposing derivative(q, u). Chosen
