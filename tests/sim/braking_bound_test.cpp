@@ -17,7 +17,7 @@ using Route = std::vector<std::array<double, 2>>;
 
 // The car's: stops from 3 m/s in 7.5 m, backs up at 0.5 m/s at most.
 constexpr SpeedLimits kLimits{3.0, 0.5, 0.6, 0.6};
-constexpr double kStep = 0.05;                 // a speed gain of 0.03 m/s per tick at most
+constexpr double kStep = 0.05;  // a speed gain of 0.03 m/s per tick at most
 
 // 10 m x 2 m at 0.1 m; every cell sensed at tick `tick`, those with x >= unknown_from_m at
 // `late_tick`.

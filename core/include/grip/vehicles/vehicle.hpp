@@ -79,11 +79,11 @@ concept BoundsMotionNearState = VehicleModel<V> &&
 
 // A model that speeds up and brakes at bounded rates: how fast it could drive toward space it
 // has not sensed, and still stop inside what it has, follows from them (sim/braking_bound.hpp).
-// Both bound the reference point's speed; plans may hold either.
+// The first two bound how fast the reference point's speed changes; plans may hold either.
 template <typename V>
 concept LimitsAcceleration = VehicleModel<V> && requires(const V& v) {
-  { v.braking_decel_m_s2() } -> std::convertible_to<double>;  // the contingency's [m/s^2]
-  { v.accel_bound_m_s2() } -> std::convertible_to<double>;    // the larger of the two [m/s^2]
+  { v.braking_decel_m_s2() } -> std::convertible_to<double>;     // the contingency's [m/s^2]
+  { v.accel_bound_m_s2() } -> std::convertible_to<double>;       // the larger of the two [m/s^2]
   { v.max_reverse_speed_m_s() } -> std::convertible_to<double>;  // backing up [m/s], > 0
 };
 

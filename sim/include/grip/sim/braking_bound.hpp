@@ -8,10 +8,10 @@
 // by tick t, or where the route reverses (a cusp, where any vehicle
 // is at rest), or where the run ended (treated as open). The bound is the speed it can brake
 // to rest from within that distance d, sqrt(2 b d) with the braking deceleration b, capped at
-// the top speed (backing up, at the top reverse speed), and reached from the previous tick's bound at most at the acceleration bound
-// (a vehicle at rest cannot jump to it). It ignores everything else: the planner's choice of
-// route, turning, obstacles a later plan would meet. A mean speed close to it means the
-// vehicle drove as fast as its sensing allowed.
+// the top speed (backing up, at the top reverse speed), and reached from the previous tick's bound
+// at most at the acceleration bound (a vehicle at rest cannot jump to it). It ignores everything
+// else: the planner's choice of route, turning, obstacles a later plan would meet. A mean speed
+// close to it means the vehicle drove as fast as its sensing allowed.
 
 #include <array>
 #include <cstdint>
@@ -27,8 +27,8 @@ namespace grip::sim {
 struct SpeedLimits {
   double max_speed_m_s;
   double max_reverse_speed_m_s;  // where the route goes against the chassis's heading
-  double accel_m_s2;          // the acceleration bound
-  double braking_decel_m_s2;  // the braking maneuver's deceleration
+  double accel_m_s2;             // the acceleration bound
+  double braking_decel_m_s2;     // the braking maneuver's deceleration
 };
 
 inline constexpr std::uint32_t kNeverSensed = 0xFFFF'FFFFU;
