@@ -5,13 +5,13 @@
 //
 // At each tick t the vehicle is at arc length s on the route it went on to drive. Ahead of it,
 // the route is usable up to the first point where the chassis there touches a cell not sensed
-// by tick t, or where the route reverses (a cusp, where any vehicle
-// is at rest), or where the run ended (treated as open). The bound is the speed it can brake
-// to rest from within that distance d, sqrt(2 b d) with the braking deceleration b, capped at
-// the top speed (backing up, at the top reverse speed), and reached from the previous tick's bound
-// at most at the acceleration bound (a vehicle at rest cannot jump to it). It ignores everything
-// else: the planner's choice of route, turning, obstacles a later plan would meet. A mean speed
-// close to it means the vehicle drove as fast as its sensing allowed.
+// by tick t, or where the route reverses (a cusp, where any vehicle is at rest), or where the
+// run ended (treated as open). The bound is the speed it can brake to rest from within that
+// distance d, sqrt(2 b d) with the braking deceleration b, capped at the top speed (backing up,
+// at the top reverse speed), and reached from the previous tick's bound at most at the
+// acceleration bound (a vehicle at rest cannot jump to it). It ignores everything else: the
+// planner's choice of route, turning, obstacles a later plan would meet. A mean speed close to
+// it means the vehicle drove as fast as its sensing allowed.
 
 #include <array>
 #include <cstdint>
