@@ -5,11 +5,18 @@
 namespace grip::rt {
 
 template <VehicleModel V>
-Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const OccupancyGrid& grid,
+Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
+                                                          const OccupancyGrid& grid,
                                                           const ExplorationDriverConfig& config,
                                                           const PlannerConfig& planner) {
   ExplorationTargetConfig target_config = config.target;
   target_config.frontier.clearance_m = planner.rho_clearance_m;
+  if (vehicle.min_turning_radius_m() > 0.0) {
+    KinematicReachConfig kinematics;
+    kinematics.turning_radius_m = vehicle.min_turning_radius_m();
+    kinematics.footprint = vehicle.footprint();
+    target_config.kinematics = kinematics;
+  }
   auto target = ExplorationTarget::create(grid, target_config);
   if (!target) return target.error();
   PathSelectionConfig selection;
@@ -28,6 +35,7 @@ ExplorationDriver<V>::ExplorationDriver(ExplorationDriver&& other) noexcept
       target_(std::move(other.target_)),
       robot_x_m_(other.robot_x_m_),
       robot_y_m_(other.robot_y_m_),
+      robot_theta_(other.robot_theta_),
       robot_ns_(other.robot_ns_),
       selector_(std::move(other.selector_)),
       requested_(other.requested_),
@@ -36,6 +44,7 @@ ExplorationDriver<V>::ExplorationDriver(ExplorationDriver&& other) noexcept
       explored_(other.explored_),
       groups_(other.groups_),
       groups_given_up_(other.groups_given_up_),
+      groups_unreachable_(other.groups_unreachable_),
       has_target_(other.has_target_),
       target_x_m_(other.target_x_m_),
       target_y_m_(other.target_y_m_) {}
@@ -66,14 +75,14 @@ template <VehicleModel V>
 void ExplorationDriver<V>::choose_now(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
                                       std::uint64_t plan_start_ns) noexcept {
   request(cycle, grid, plan_start_ns);
-  target_.choose(robot_x_m_, robot_y_m_, robot_ns_);
+  target_.choose(robot_x_m_, robot_y_m_, robot_theta_, robot_ns_);
   take_over(cycle, grid);
 }
 
 template <VehicleModel V>
 bool ExplorationDriver<V>::serve_request() noexcept {
   if (stage_.load(std::memory_order_acquire) != kRequested) return false;
-  target_.choose(robot_x_m_, robot_y_m_, robot_ns_);
+  target_.choose(robot_x_m_, robot_y_m_, robot_theta_, robot_ns_);
   stage_.store(kChosen, std::memory_order_release);
   return true;
 }
@@ -94,6 +103,7 @@ void ExplorationDriver<V>::request(const ReplanningCycle<V>& cycle, const Occupa
   const typename V::State& here = cycle.plan_start();
   robot_x_m_ = state_x(here);
   robot_y_m_ = state_y(here);
+  robot_theta_ = state_theta(here);
   robot_ns_ = static_cast<std::int64_t>(plan_start_ns);
 }
 
@@ -103,6 +113,7 @@ void ExplorationDriver<V>::take_over(ReplanningCycle<V>& cycle,
                                      const OccupancyGrid& grid) noexcept {
   groups_ = target_.groups();
   groups_given_up_ = target_.given_up_groups();
+  groups_unreachable_ = target_.unreachable_groups();
   const ExplorationStatus status = target_.status();
   if (status != ExplorationStatus::kTarget) {
     // No reachable frontier is left (or the robot is off the map): stop where it stands.

@@ -132,6 +132,7 @@ inline grip_msg_PlannerStatus planner_status_from(FuzzBytes& in) {
   m.exploration_complete = in.take_bool();
   m.frontier_groups = in.take<std::uint32_t>();
   m.frontier_groups_given_up = in.take<std::uint32_t>();
+  m.frontier_groups_unreachable = in.take<std::uint32_t>();
   m.target_x_m = in.take<double>();
   m.target_y_m = in.take<double>();
   m.incarnation = in.take<std::uint64_t>();

@@ -85,7 +85,8 @@ ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double s
   ExplorationDriverConfig exploration;
   exploration.refresh_cycles = 1;
   exploration.sensing_radius_m = sensing_m;
-  auto driver = ExplorationDriver<V>::create(map, exploration, session.sizing().planner).value();
+  auto driver =
+      ExplorationDriver<V>::create(vehicle, map, exploration, session.sizing().planner).value();
 
   const typename V::State start = vehicle.rest_state(start_x, start_y, start_theta);
   sim::ExecutorConfig executor_config;

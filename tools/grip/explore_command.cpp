@@ -157,6 +157,7 @@ nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
                     {"exploration_complete", s.exploration_complete},
                     {"frontier_groups", s.frontier_groups},
                     {"frontier_groups_given_up", s.frontier_groups_given_up},
+                    {"frontier_groups_unreachable", s.frontier_groups_unreachable},
                     {"target", {s.target_x_m, s.target_y_m}},
                     {"tree_edges", s.tree_edges}};
   }

@@ -126,6 +126,7 @@ nlohmann::json to_json(const grip_msg_PlannerStatus& m) {
           {"exploration_complete", m.exploration_complete},
           {"frontier_groups", m.frontier_groups},
           {"frontier_groups_given_up", m.frontier_groups_given_up},
+          {"frontier_groups_unreachable", m.frontier_groups_unreachable},
           {"target_x_m", m.target_x_m},
           {"target_y_m", m.target_y_m},
           {"incarnation", m.incarnation},

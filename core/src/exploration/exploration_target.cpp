@@ -18,6 +18,9 @@ Status ExplorationTargetConfig::validate(double resolution_m) const {
   };
   if (Status s = positive("give_up_after_s", give_up_after_s); !s) return s;
   if (Status s = positive("progress_m", progress_m); !s) return s;
+  if (kinematics) {
+    if (Status s = kinematics->validate(); !s) return s;
+  }
   return positive("retarget_m", retarget_m);
 }
 
@@ -31,29 +34,38 @@ Result<ExplorationTarget> ExplorationTarget::create(const OccupancyGrid& like,
   if (!frontiers) return frontiers.error();
   auto rho = DistanceField::create(like.width(), like.height(), like.resolution());
   if (!rho) return rho.error();
-  return ExplorationTarget(config, like, std::move(clearance).value(), std::move(frontiers).value(),
-                           std::move(rho).value());
+  auto map = std::make_unique<OccupancyGrid>(like);
+  std::optional<KinematicReach> reach;
+  if (config.kinematics) {
+    auto made = KinematicReach::create(*map, *config.kinematics);
+    if (!made) return made.error();
+    reach.emplace(std::move(made).value());
+  }
+  return ExplorationTarget(config, std::move(map), std::move(clearance).value(),
+                           std::move(frontiers).value(), std::move(rho).value(), std::move(reach));
 }
 
-ExplorationTarget::ExplorationTarget(const ExplorationTargetConfig& config, OccupancyGrid map,
-                                     ClearanceMap clearance, FrontierMap frontiers,
-                                     DistanceField rho)
+ExplorationTarget::ExplorationTarget(const ExplorationTargetConfig& config,
+                                     std::unique_ptr<OccupancyGrid> map, ClearanceMap clearance,
+                                     FrontierMap frontiers, DistanceField rho,
+                                     std::optional<KinematicReach> reach)
     : config_(config),
       map_(std::move(map)),
       clearance_(std::move(clearance)),
       frontiers_(std::move(frontiers)),
       rho_(std::move(rho)),
+      reach_(std::move(reach)),
       clearance_exact_d2_(clearance_.squared_cells_at_least(config.frontier.clearance_m)),
       retries_left_(config.retry_rounds) {}
 
 void ExplorationTarget::copy_map(const OccupancyGrid& map, const CellBox& written) noexcept {
-  GRIP_ASSERT(map.width() == map_.width() && map.height() == map_.height() &&
-              map.resolution() == map_.resolution());
+  GRIP_ASSERT(map.width() == map_->width() && map.height() == map_->height() &&
+              map.resolution() == map_->resolution());
   const CellBox box{std::max(written.x0, 0), std::max(written.y0, 0),
                     std::min(written.x1, map.width() - 1), std::min(written.y1, map.height() - 1)};
   if (box.empty()) return;
   const std::span<const Cell> from = map.cells();
-  const std::span<Cell> to = map_.mutable_cells();
+  const std::span<Cell> to = map_->mutable_cells();
   for (int y = box.y0; y <= box.y1; ++y) {
     for (int x = box.x0; x <= box.x1; ++x) {
       const std::uint32_t i = map.index(x, y);
@@ -72,43 +84,52 @@ void ExplorationTarget::copy_map(const OccupancyGrid& map, const CellBox& writte
 // changed since; any other is built whole and tagged apart from the one the planner holds.
 void ExplorationTarget::prepare_rho() noexcept {
   std::uint32_t tag = rho_.tag();
-  if ((tag == 1 || tag == 2) && rho_.mask_source() == &map_) {
-    rho_.prepare(map_, clearance_, config_.frontier.clearance_m, rho_windows_[tag - 1]);
+  if ((tag == 1 || tag == 2) && rho_.mask_source() == map_.get()) {
+    rho_.prepare(*map_, clearance_, config_.frontier.clearance_m, rho_windows_[tag - 1]);
   } else {
     tag = last_rho_tag_ == 1 ? 2 : 1;
     rho_.set_tag(tag);
-    rho_.prepare(map_, clearance_, config_.frontier.clearance_m);
+    rho_.prepare(*map_, clearance_, config_.frontier.clearance_m);
   }
   rho_windows_[tag - 1] = CellBox{};
   last_rho_tag_ = tag;
 }
 
-ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m,
+ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, double robot_theta,
                                             std::int64_t now_ns) noexcept {
+  const OccupancyGrid& map = *map_;
   const bool map_changed = std::exchange(map_changed_, false);
   // Clearance, frontiers and the robot's traversable set near what changed only (the clearance
   // created computed; exact as far as frontiers and rho ask).
   FrontierMap::MapChange change;
+  const CellBox freedom_changed = std::exchange(clearance_changed_, CellBox{});
   if (map_changed) {
-    change.clearance_window = clearance_.update(map_, clearance_changed_, clearance_exact_d2_);
+    change.clearance_window = clearance_.update(map, freedom_changed, clearance_exact_d2_);
     change.written = std::exchange(written_, CellBox{});
-    clearance_changed_ = CellBox{};
     for (CellBox& window : rho_windows_) window.add(change.clearance_window);
   }
-  ExplorationStatus status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m, change);
+  // Until its search is complete, the kinematic reach cannot tell a group out of reach.
+  std::span<const std::uint64_t> reached;
+  if (reach_) {
+    reach_->update(freedom_changed, robot_x_m, robot_y_m, robot_theta);
+    if (reach_->complete()) reached = reach_->passed();
+  }
+  ExplorationStatus status =
+      frontiers_.update(map, clearance_, robot_x_m, robot_y_m, change, reached);
   if (status == ExplorationStatus::kComplete && frontiers_.given_up_groups() > 0 &&
       retries_left_ > 0) {
     --retries_left_;
     frontiers_.forgive_all();
-    status = frontiers_.update(map_, clearance_, robot_x_m, robot_y_m, FrontierMap::MapChange{});
+    status =
+        frontiers_.update(map, clearance_, robot_x_m, robot_y_m, FrontierMap::MapChange{}, reached);
   }
   if (status != ExplorationStatus::kTarget) return status;
   prepare_rho();
   rho_.propagate(frontiers_.approach_cells());
   const FrontierGroup& group = frontiers_.groups()[frontiers_.target()];
   if (group.nearest_cell != FrontierGroup::kNoCell) {
-    const double x = map_.cell_center_x(map_.cell_x(group.nearest_cell));
-    const double y = map_.cell_center_y(map_.cell_y(group.nearest_cell));
+    const double x = map.cell_center_x(map.cell_x(group.nearest_cell));
+    const double y = map.cell_center_y(map.cell_y(group.nearest_cell));
     if (std::hypot(x - target_x_m_, y - target_y_m_) > config_.retarget_m ||
         group.rho_m < best_rho_m_ - config_.progress_m || map_changed) {
       best_rho_m_ = group.rho_m;

@@ -147,19 +147,20 @@ std::span<const std::uint32_t> FrontierMap::target_cells() const noexcept {
 }
 
 ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
-                                      double robot_x_m, double robot_y_m) noexcept {
-  return update(grid, clearance, robot_x_m, robot_y_m, nullptr);
+                                      double robot_x_m, double robot_y_m,
+                                      std::span<const std::uint64_t> reached) noexcept {
+  return update(grid, clearance, robot_x_m, robot_y_m, nullptr, reached);
 }
 
 ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
-                                      double robot_x_m, double robot_y_m,
-                                      const MapChange& change) noexcept {
-  return update(grid, clearance, robot_x_m, robot_y_m, &change);
+                                      double robot_x_m, double robot_y_m, const MapChange& change,
+                                      std::span<const std::uint64_t> reached) noexcept {
+  return update(grid, clearance, robot_x_m, robot_y_m, &change, reached);
 }
 
 ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
-                                      double robot_x_m, double robot_y_m,
-                                      const MapChange* change) noexcept {
+                                      double robot_x_m, double robot_y_m, const MapChange* change,
+                                      std::span<const std::uint64_t> reached) noexcept {
   GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
               grid.resolution() == resolution_);
   // Without a full pass since the grid was last seen, a change cannot say what is stale.
@@ -194,6 +195,7 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
   // The target: the least score; ties go to the group found first (lowest cell index).
   double best = std::numeric_limits<double>::infinity();
   given_up_groups_ = 0;
+  unreachable_groups_ = 0;
   for (std::uint32_t g = 0; g < groups_.size(); ++g) {
     FrontierGroup& group = groups_[g];
     measure_group(grid, group);
@@ -202,6 +204,10 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
     if (std::all_of(cells.begin(), cells.end(),
                     [&](std::uint32_t c) { return given_up_[c] != 0; })) {
       ++given_up_groups_;
+      continue;
+    }
+    if (!reached.empty() && !reached_from(grid, group, reached)) {
+      ++unreachable_groups_;
       continue;
     }
     const double size_m = group.size * resolution_;
@@ -329,6 +335,26 @@ void FrontierMap::measure_group(const OccupancyGrid& grid, FrontierGroup& group)
   group.rho_m = best == kUnreachable ? std::numeric_limits<double>::infinity()
                                      : best * (resolution_ / DistanceField::kCostUnitsPerCell);
   group.score_m = std::numeric_limits<double>::infinity();
+}
+
+bool FrontierMap::reached_from(const OccupancyGrid& grid, const FrontierGroup& group,
+                               std::span<const std::uint64_t> reached) const noexcept {
+  const auto w = static_cast<std::uint32_t>(width_);
+  for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
+    const std::uint32_t c = cells_[i];
+    const int cx = static_cast<int>(c % w);
+    const int cy = static_cast<int>(c / w);
+    for (const Offset& o : window_) {
+      const int x = cx + o.dx;
+      const int y = cy + o.dy;
+      if (!grid.in_bounds(x, y)) continue;
+      const std::uint32_t a = grid.index(x, y);
+      if (((reached[a >> 6] >> (a & 63U)) & 1U) != 0 && detail::in_sight(grid, x, y, cx, cy)) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 void FrontierMap::collect_approach_cells(const OccupancyGrid& grid,

@@ -52,6 +52,7 @@ struct CycleStatus {
   bool exploration_complete = false;
   std::uint32_t frontier_groups = 0;
   std::uint32_t frontier_groups_given_up = 0;
+  std::uint32_t frontier_groups_unreachable = 0;
   double target_x_m = 0.0;
   double target_y_m = 0.0;
   std::uint64_t misses = 0;

@@ -65,7 +65,8 @@ Status PlanningSide<V>::prepare(const VehicleSample& state, bool explore) {
   exploration.target.give_up_after_s = config_.frontier_give_up_s;
   exploration.refresh_cycles = config_.target_refresh_cycles;
   exploration.sensing_radius_m = config_.sensing_radius_m;
-  auto driver = ExplorationDriver<V>::create(session.grid(), exploration, session.sizing().planner);
+  auto driver = ExplorationDriver<V>::create(session.vehicle(), session.grid(), exploration,
+                                             session.sizing().planner);
   if (!driver) return driver.error();
   driver_.emplace(std::move(driver).value());
   driver_ready_.store(true, std::memory_order_release);
@@ -191,6 +192,7 @@ void PlanningSide<V>::hand_over_status(const CycleOutcome& outcome,
   status.exploration_complete = driver_->explored();
   status.frontier_groups = driver_->groups();
   status.frontier_groups_given_up = driver_->groups_given_up();
+  status.frontier_groups_unreachable = driver_->groups_unreachable();
   status.target_x_m = heading_x_m_;
   status.target_y_m = heading_y_m_;
   status.misses = session.misses();

@@ -104,6 +104,7 @@ void PublishSide::publish_status(const CycleStatus& s) {
   msg.exploration_complete = s.exploration_complete;
   msg.frontier_groups = s.frontier_groups;
   msg.frontier_groups_given_up = s.frontier_groups_given_up;
+  msg.frontier_groups_unreachable = s.frontier_groups_unreachable;
   msg.target_x_m = s.target_x_m;
   msg.target_y_m = s.target_y_m;
   msg.incarnation = incarnation_;

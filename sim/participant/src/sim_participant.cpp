@@ -25,6 +25,22 @@ namespace {
 // Simulated time on the wire starts here rather than at 0: a stamp of 0 reads as "never".
 constexpr std::int64_t kEpochNs = 1'000'000'000;
 
+// What the planner left when it said exploration was over: the frontier groups it gave up on
+// and those its vehicle's turning radius cannot reach.
+std::string left_frontiers(const grip_msg_PlannerStatus& status) {
+  std::string left;
+  if (status.frontier_groups_given_up > 0) {
+    left = std::to_string(status.frontier_groups_given_up) +
+           " frontier group(s) the planner gave up on";
+  }
+  if (status.frontier_groups_unreachable > 0) {
+    if (!left.empty()) left += " and ";
+    left += std::to_string(status.frontier_groups_unreachable) +
+            " frontier group(s) the vehicle cannot reach at its turning radius";
+  }
+  return left;
+}
+
 // braking_bound_m_s for the route of a vehicle that brakes at a bounded rate; none for one
 // that stops at once.
 template <VehicleModel V>
@@ -201,19 +217,18 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   // Whether the run is over: the planner says no reachable frontier remains, or sim time ran
   // out, or coverage stopped growing.
   const auto finished = [&] {
-    if (status && status->exploration_complete && status->frontier_groups_given_up > 0) {
+    if (status && status->exploration_complete &&
+        status->frontier_groups_given_up + status->frontier_groups_unreachable > 0) {
       // The planner has nothing left but frontiers it could not get to. Only the ground truth
       // tells whether reachable free space lay behind them: if every reachable cell was sensed,
       // what is left unknown is out of the vehicle's reach and the run is complete.
-      const std::string given_up = std::to_string(status->frontier_groups_given_up);
+      const std::string left = left_frontiers(*status);
       if (coverage_of(sensed, *reachable) >= 1.0) {
         report.result = "complete";
-        report.reason = "the planner gave up on " + given_up +
-                        " frontier group(s) with no reachable free space behind them";
+        report.reason = "left " + left + ", with no reachable free space behind them";
       } else {
         report.result = "stuck";
-        report.reason =
-            "the planner gave up on " + given_up + " frontier group(s) it could not reach";
+        report.reason = "left " + left;
       }
     } else if (status && status->exploration_complete) {
       const double coverage = coverage_of(sensed, *reachable);

@@ -51,7 +51,7 @@ TEST_F(ExplorationTargetTest, ChoosesWhatTheFrontierMapChoosesOnItsCopyOfTheMap)
   ASSERT_EQ(frontiers.update(map, clearance, 1.0, 1.0), ExplorationStatus::kTarget);
 
   // WHEN the target is chosen for a robot at the same place
-  ASSERT_EQ(target->choose(1.0, 1.0, 0), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 0), ExplorationStatus::kTarget);
 
   // THEN it is the same group, approached from the same cells, and its position is the centre of
   // the group's cell nearest to the robot
@@ -73,13 +73,13 @@ TEST_F(ExplorationTargetTest, ChoosesWhatTheFrontierMapChoosesOnItsCopyOfTheMap)
 
 TEST_F(ExplorationTargetTest, ReadsOnlyTheMapCopiedIntoIt) {
   // GIVEN a first choice, and then the unknown part of the caller's map sensed as a wall
-  ASSERT_EQ(target->choose(1.0, 1.0, 0), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 0), ExplorationStatus::kTarget);
   map.fill_rect(0.0, 2.5, 8.0, 4.0, Cell::kObstacle);
   // WHEN it chooses again before the map is copied in THEN the old map still has frontiers
-  EXPECT_EQ(target->choose(1.0, 1.0, kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->choose(1.0, 1.0, 0.0, kSecond), ExplorationStatus::kTarget);
   // WHEN the map is copied in THEN nothing is left to explore
   target->copy_map(map);
-  EXPECT_EQ(target->choose(1.0, 1.0, 2 * kSecond), ExplorationStatus::kComplete);
+  EXPECT_EQ(target->choose(1.0, 1.0, 0.0, 2 * kSecond), ExplorationStatus::kComplete);
   EXPECT_EQ(target->status(), ExplorationStatus::kComplete);
   EXPECT_TRUE(target->target_cells().empty());
 }
@@ -116,8 +116,8 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
       incremental.copy_map(map, written);
       auto whole = ExplorationTarget::create(map, config).value();
       const std::int64_t now = round * kSecond;
-      const ExplorationStatus status = whole.choose(1.0, 1.0, now);
-      ASSERT_EQ(incremental.choose(1.0, 1.0, now), status) << "round " << round;
+      const ExplorationStatus status = whole.choose(1.0, 1.0, 0.0, now);
+      ASSERT_EQ(incremental.choose(1.0, 1.0, 0.0, now), status) << "round " << round;
       ASSERT_EQ(incremental.groups(), whole.groups());
       ASSERT_EQ(sorted(incremental.target_cells()), sorted(whole.target_cells()));
       ASSERT_EQ(sorted(incremental.approach_cells()), sorted(whole.approach_cells()));
@@ -139,61 +139,61 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
 
 TEST_F(ExplorationTargetTest, ATargetWithoutProgressIsGivenUpAfterTheConfiguredTime) {
   // GIVEN a robot that stays where it is on an unchanged map
-  ASSERT_EQ(target->choose(1.0, 1.0, 0), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 0), ExplorationStatus::kTarget);
   const std::vector<std::uint32_t> first = sorted(target->target_cells());
   // WHEN just under the give-up time has passed THEN the target stands
-  ASSERT_EQ(target->choose(1.0, 1.0, 60 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 60 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(sorted(target->target_cells()), first);
   EXPECT_EQ(target->given_up_groups(), 0U);
   // WHEN more than that has passed THEN it is given up, and the next choice is the other group
-  ASSERT_EQ(target->choose(1.0, 1.0, 61 * kSecond), ExplorationStatus::kTarget);
-  ASSERT_EQ(target->choose(1.0, 1.0, 62 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 61 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 62 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(target->given_up_groups(), 1U);
   EXPECT_NE(sorted(target->target_cells()), first);
   // AND when that one is given up too, both are taken back once (retry_rounds: 1): the best
   // group is the target again
-  ASSERT_EQ(target->choose(1.0, 1.0, 123 * kSecond), ExplorationStatus::kTarget);
-  ASSERT_EQ(target->choose(1.0, 1.0, 124 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 123 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 124 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(target->given_up_groups(), 0U);
   EXPECT_EQ(sorted(target->target_cells()), first);
   // AND when both are given up again, exploration ends and says why
-  ASSERT_EQ(target->choose(1.0, 1.0, 185 * kSecond), ExplorationStatus::kTarget);
-  ASSERT_EQ(target->choose(1.0, 1.0, 186 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 185 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 186 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(target->given_up_groups(), 1U);
-  ASSERT_EQ(target->choose(1.0, 1.0, 247 * kSecond), ExplorationStatus::kTarget);
-  EXPECT_EQ(target->choose(1.0, 1.0, 248 * kSecond), ExplorationStatus::kComplete);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 247 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->choose(1.0, 1.0, 0.0, 248 * kSecond), ExplorationStatus::kComplete);
   EXPECT_EQ(target->given_up_groups(), 2U);
 }
 
 TEST_F(ExplorationTargetTest, WithoutRetryRoundsTheFirstTimeEverythingIsGivenUpEndsExploration) {
   config.retry_rounds = 0;
   target.emplace(ExplorationTarget::create(map, config).value());
-  ASSERT_EQ(target->choose(1.0, 1.0, 0), ExplorationStatus::kTarget);
-  ASSERT_EQ(target->choose(1.0, 1.0, 61 * kSecond), ExplorationStatus::kTarget);
-  ASSERT_EQ(target->choose(1.0, 1.0, 62 * kSecond), ExplorationStatus::kTarget);
-  ASSERT_EQ(target->choose(1.0, 1.0, 123 * kSecond), ExplorationStatus::kTarget);
-  EXPECT_EQ(target->choose(1.0, 1.0, 124 * kSecond), ExplorationStatus::kComplete);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 0), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 61 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 62 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.0, 0.0, 123 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->choose(1.0, 1.0, 0.0, 124 * kSecond), ExplorationStatus::kComplete);
   EXPECT_EQ(target->given_up_groups(), 2U);
 }
 
 TEST_F(ExplorationTargetTest, ProgressOrANewMapRestartsTheGiveUpClock) {
   // GIVEN a target chosen for a robot far from it
-  ASSERT_EQ(target->choose(0.5, 0.5, 0), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 0.5, 0.0, 0), ExplorationStatus::kTarget);
   const std::vector<std::uint32_t> first = sorted(target->target_cells());
   // WHEN the robot comes closer by more than progress_m within the give-up time
-  ASSERT_EQ(target->choose(0.5, 1.5, 50 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 1.5, 0.0, 50 * kSecond), ExplorationStatus::kTarget);
   // THEN the clock restarts there: 100 s after the start, the target still stands
-  ASSERT_EQ(target->choose(0.5, 1.5, 100 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 1.5, 0.0, 100 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(target->given_up_groups(), 0U);
   EXPECT_EQ(sorted(target->target_cells()), first);
   // WHEN the map changes (newly sensed cells) THEN the clock restarts too
   target->copy_map(map);
-  ASSERT_EQ(target->choose(0.5, 1.5, 150 * kSecond), ExplorationStatus::kTarget);
-  ASSERT_EQ(target->choose(0.5, 1.5, 200 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 1.5, 0.0, 150 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 1.5, 0.0, 200 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(target->given_up_groups(), 0U);
   // AND without either, it is given up once the time has passed
-  ASSERT_EQ(target->choose(0.5, 1.5, 211 * kSecond), ExplorationStatus::kTarget);
-  ASSERT_EQ(target->choose(0.5, 1.5, 212 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 1.5, 0.0, 211 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(0.5, 1.5, 0.0, 212 * kSecond), ExplorationStatus::kTarget);
   EXPECT_EQ(target->given_up_groups(), 1U);
 }
 

@@ -21,14 +21,21 @@
 // through a period of stalls), not because the group is out of its reach; without the retries
 // a fast vehicle ends `stuck` having given up corners it could reach.
 //
+// A vehicle that cannot turn in place (the car) also keeps KinematicReach on the copy: groups
+// whose approach its turning radius cannot reach are passed over as soon as its search is
+// complete, and counted (unreachable_groups()) rather than chased until the clock gives up.
+//
 // Memory is reserved by create(); copy_map() and choose() never allocate and never throw.
 
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <span>
 
 #include "grip/common/result.hpp"
 #include "grip/exploration/frontier.hpp"
+#include "grip/exploration/kinematic_reach.hpp"
 #include "grip/world/clearance_map.hpp"
 #include "grip/world/distance_field.hpp"
 #include "grip/world/occupancy_grid.hpp"
@@ -41,7 +48,10 @@ struct ExplorationTargetConfig {
   double progress_m = 0.5;         // rho_A* must drop by this much to count as progress
   double retarget_m = 3.0;         // a nearest cell that moves this far is a new target
   std::uint32_t retry_rounds = 1;  // times the groups given up are retried when nothing is left
-  // Errors name the bad value: FrontierConfig's, and any of the above not finite or not > 0.
+  // For a vehicle with a minimum turning radius; none for one that turns in place.
+  std::optional<KinematicReachConfig> kinematics;
+  // Errors name the bad value: FrontierConfig's, KinematicReachConfig's, and any of the above
+  // not finite or not > 0.
   Status validate(double resolution_m) const;
 };
 
@@ -59,10 +69,11 @@ class ExplorationTarget {
   void copy_map(const OccupancyGrid& map) noexcept {
     copy_map(map, CellBox{0, 0, map.width() - 1, map.height() - 1});
   }
-  // Chooses the target for a robot (its reference point) at (robot_x_m, robot_y_m) at vehicle
-  // time now_ns. kTarget: approach_cells() and target_cells() describe it; kComplete: no
-  // reachable frontier is left; kRobotOutsideGrid: no target.
-  ExplorationStatus choose(double robot_x_m, double robot_y_m, std::int64_t now_ns) noexcept;
+  // Chooses the target for a robot (its reference point) at (robot_x_m, robot_y_m), heading
+  // robot_theta, at vehicle time now_ns. kTarget: approach_cells() and target_cells() describe
+  // it; kComplete: no reachable frontier is left; kRobotOutsideGrid: no target.
+  ExplorationStatus choose(double robot_x_m, double robot_y_m, double robot_theta,
+                           std::int64_t now_ns) noexcept;
 
   // Of the last choose(); valid until the next.
   ExplorationStatus status() const noexcept { return frontiers_.status(); }
@@ -77,7 +88,10 @@ class ExplorationTarget {
     return static_cast<std::uint32_t>(frontiers_.groups().size());
   }
   std::uint32_t given_up_groups() const noexcept { return frontiers_.given_up_groups(); }
-  const OccupancyGrid& map() const noexcept { return map_; }
+  // Groups the vehicle's kinematics cannot reach (config kinematics), of the last choose().
+  std::uint32_t unreachable_groups() const noexcept { return frontiers_.unreachable_groups(); }
+  const OccupancyGrid& map() const noexcept { return *map_; }
+  const KinematicReach* kinematics() const noexcept { return reach_ ? &*reach_ : nullptr; }
   // rho_A* toward approach_cells() on this map, with the planner's inflation
   // (frontier.clearance_m, which equals PlannerConfig::rho_clearance_m), for Planner::adopt_goal;
   // the caller may swap its contents for another field of the same size until the next
@@ -85,15 +99,17 @@ class ExplorationTarget {
   DistanceField& rho() noexcept { return rho_; }
 
  private:
-  ExplorationTarget(const ExplorationTargetConfig& config, OccupancyGrid map,
-                    ClearanceMap clearance, FrontierMap frontiers, DistanceField rho);
+  ExplorationTarget(const ExplorationTargetConfig& config, std::unique_ptr<OccupancyGrid> map,
+                    ClearanceMap clearance, FrontierMap frontiers, DistanceField rho,
+                    std::optional<KinematicReach> reach);
   void prepare_rho() noexcept;
 
   ExplorationTargetConfig config_;
-  OccupancyGrid map_;
+  std::unique_ptr<OccupancyGrid> map_;  // on the heap: reach_ keeps its address
   ClearanceMap clearance_;
   FrontierMap frontiers_;
   DistanceField rho_;
+  std::optional<KinematicReach> reach_;
   bool map_changed_ = true;           // since the last choose()
   CellBox written_;                   // cells copied in since the last choose()
   CellBox clearance_changed_;         // of those, the ones that changed between free and not free

@@ -102,8 +102,14 @@ class FrontierMap {
   // at (robot_x_m, robot_y_m). kTarget when a group was chosen, kComplete when no reachable
   // frontier group remains, kRobotOutsideGrid (nothing computed, no target) when the position
   // is not in the grid.
+  //
+  // `reached`: where the vehicle's kinematics can take its reference point (a bit per cell,
+  // KinematicReach::passed()), or empty when any cell the chassis' clearance allows will do. A
+  // group with no reached cell in its approach window, in sight, is not a target and is counted
+  // in unreachable_groups().
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
-                           double robot_x_m, double robot_y_m) noexcept;
+                           double robot_x_m, double robot_y_m,
+                           std::span<const std::uint64_t> reached = {}) noexcept;
   // The same after `change` to the grid of the last update(): frontier cells are detected again
   // and the robot's traversable set rebuilt only where it changed; grouping scans the frontier
   // cells (a bit per cell), and the wavefront what the robot reaches. Equal to a full update().
@@ -114,7 +120,8 @@ class FrontierMap {
     CellBox clearance_window;
   };
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
-                           double robot_x_m, double robot_y_m, const MapChange& change) noexcept;
+                           double robot_x_m, double robot_y_m, const MapChange& change,
+                           std::span<const std::uint64_t> reached = {}) noexcept;
 
   ExplorationStatus status() const noexcept { return status_; }
   // Sets group `group` of the last update aside (until forgive_all()): a frontier the vehicle could
@@ -126,6 +133,9 @@ class FrontierMap {
   void forgive_all() noexcept;
   // Reachable groups of the last update passed over because they were given up.
   std::uint32_t given_up_groups() const noexcept { return given_up_groups_; }
+  // Groups of the last update the chassis' clearance reaches but the vehicle's kinematics does
+  // not (see update()'s `reached`), and not given up.
+  std::uint32_t unreachable_groups() const noexcept { return unreachable_groups_; }
   // Every frontier cell, grouped: group g's cells are contiguous (see FrontierGroup::first), in
   // flood-fill order from the group's lowest cell index.
   std::span<const std::uint32_t> frontier_cells() const noexcept { return cells_.span(); }
@@ -153,7 +163,10 @@ class FrontierMap {
   FrontierMap(int width_cells, int height_cells, double resolution_m, const FrontierConfig& config,
               DistanceField field);
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
-                           double robot_x_m, double robot_y_m, const MapChange* change) noexcept;
+                           double robot_x_m, double robot_y_m, const MapChange* change,
+                           std::span<const std::uint64_t> reached) noexcept;
+  bool reached_from(const OccupancyGrid& grid, const FrontierGroup& group,
+                    std::span<const std::uint64_t> reached) const noexcept;
   void detect(const OccupancyGrid& grid, const CellBox& box) noexcept;
   void group(const OccupancyGrid& grid) noexcept;
   bool is_frontier(std::uint32_t c) const noexcept {
@@ -183,6 +196,7 @@ class FrontierMap {
   BoundedVector<std::uint32_t> stamp_;     // per cell: approach_ membership, by generation
   BoundedVector<std::uint8_t> given_up_;   // per cell: 1 within give_up_radius_m of one given up
   std::uint32_t given_up_groups_ = 0;
+  std::uint32_t unreachable_groups_ = 0;
   std::uint32_t generation_ = 0;
   std::uint32_t target_ = kNoGroup;
   ExplorationStatus status_ = ExplorationStatus::kComplete;

@@ -37,8 +37,9 @@ template <VehicleModel V>
 class ExplorationDriver {
  public:
   // For the planner's grid (its geometry) and pools (max_edges); rho's inflation is the
-  // planner's (PlannerConfig::rho_clearance_m).
-  static Result<ExplorationDriver> create(const OccupancyGrid& grid,
+  // planner's (PlannerConfig::rho_clearance_m). A vehicle with a minimum turning radius gets
+  // targets its kinematics can reach (ExplorationTargetConfig::kinematics, from its chassis).
+  static Result<ExplorationDriver> create(const V& vehicle, const OccupancyGrid& grid,
                                           const ExplorationDriverConfig& config,
                                           const PlannerConfig& planner);
 
@@ -63,6 +64,8 @@ class ExplorationDriver {
   bool explored() const noexcept { return explored_; }
   std::uint32_t groups() const noexcept { return groups_; }
   std::uint32_t groups_given_up() const noexcept { return groups_given_up_; }
+  // Groups the vehicle's turning radius cannot reach (ExplorationTarget::unreachable_groups).
+  std::uint32_t groups_unreachable() const noexcept { return groups_unreachable_; }
   // The last target taken over, if any: its centre (the group's cell nearest the robot).
   bool has_target() const noexcept { return has_target_; }
   double target_x_m() const noexcept { return target_x_m_; }
@@ -83,6 +86,7 @@ class ExplorationDriver {
   ExplorationTarget target_;
   double robot_x_m_ = 0.0;  // the request: where the robot will be, and when
   double robot_y_m_ = 0.0;
+  double robot_theta_ = 0.0;
   std::int64_t robot_ns_ = 0;
   // Planning thread only.
   PathSelector selector_;
@@ -93,6 +97,7 @@ class ExplorationDriver {
   bool explored_ = false;
   std::uint32_t groups_ = 0;
   std::uint32_t groups_given_up_ = 0;
+  std::uint32_t groups_unreachable_ = 0;
   bool has_target_ = false;
   double target_x_m_ = 0.0;
   double target_y_m_ = 0.0;

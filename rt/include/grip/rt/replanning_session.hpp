@@ -117,6 +117,7 @@ class ReplanningSession {
   ReplanningCycle<V>& cycle() noexcept { return *cycle_; }
   const ReplanningCycle<V>& cycle() const noexcept { return *cycle_; }
   const Planner<V>& planner() const noexcept { return cycle_->planner(); }
+  const V& vehicle() const noexcept { return vehicle_; }
   std::uint64_t plan_start_ns() const noexcept { return plan_start_ns_; }
   // Real time: how much later than one cycle ahead plans start, for the link's delay.
   std::int64_t plan_lead_ns() const noexcept { return lead_.lead_ns(); }
