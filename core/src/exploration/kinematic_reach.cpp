@@ -182,12 +182,18 @@ void KinematicReach::expand(std::uint32_t cell, int bin) noexcept {
     const int ex = cx + move.end_dx;
     const int ey = cy + move.end_dy;
     bool free = grid.in_bounds(ex, ey);
+    int blocked_at = -1;
     for (int i = 0; i < move.samples && free; ++i) {
       const auto k = static_cast<std::size_t>(i);
       free = checker_.is_free(x0 + move.dx_m[k], y0 + move.dy_m[k], move.theta[k]);
+      if (!free) blocked_at = i;
     }
     if (!free) {
-      blocked_[cell] |= bit;
+      // Known obstacles stay: only a move that unknown cells may have blocked is tried again.
+      if (blocked_at >= 0) {
+        const auto k = static_cast<std::size_t>(blocked_at);
+        if (unknown_near(x0 + move.dx_m[k], y0 + move.dy_m[k])) blocked_[cell] |= bit;
+      }
       continue;
     }
     for (int i = 0; i < move.samples; ++i) {
@@ -203,6 +209,28 @@ void KinematicReach::expand(std::uint32_t cell, int bin) noexcept {
     ++states_reached_;
     schedule(end, end_bit);
   }
+}
+
+// Any unknown cell within the chassis' circumscribed disk round (x_m, y_m), or the pose off the
+// grid (the grid's edge may be where the map is not known yet).
+bool KinematicReach::unknown_near(double x_m, double y_m) const noexcept {
+  const OccupancyGrid& grid = *grid_;
+  const double r = config_.footprint.circumscribed_radius();
+  int x0 = 0;
+  int y0 = 0;
+  int x1 = 0;
+  int y1 = 0;
+  if (!grid.to_cell(x_m - r, y_m - r, x0, y0) || !grid.to_cell(x_m + r, y_m + r, x1, y1)) {
+    return true;
+  }
+  const std::span<const Cell> cells = grid.cells();
+  for (int y = y0; y <= y1; ++y) {
+    const std::uint32_t row = grid.index(0, y);
+    for (int x = x0; x <= x1; ++x) {
+      if (cells[row + static_cast<std::uint32_t>(x)] == Cell::kUnknown) return true;
+    }
+  }
+  return false;
 }
 
 bool KinematicReach::passed(std::uint32_t cell) const noexcept {

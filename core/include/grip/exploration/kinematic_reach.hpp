@@ -14,9 +14,9 @@
 // The search is kept between updates and grows with the map. Known free space only grows in a
 // static world, and a car that can reverse can drive any of its moves backwards, so the states
 // reachable from where the vehicle stands now are those reachable from where it stood before:
-// after a change, only states whose moves were blocked near the cells that changed are expanded
-// again. A sensor that turns a free cell into an obstacle leaves passed() too generous, which
-// errs toward "reachable" (the give-up clock still applies).
+// after a change, only states near the cells that changed whose moves were blocked where unknown
+// cells lay are expanded again. A sensor that turns a free cell into an obstacle leaves passed()
+// too generous, which errs toward "reachable" (the give-up clock still applies).
 //
 // Each update() expands at most max_expansions states: complete() says whether the search has
 // run out of states to expand, and only then does a group out of passed()'s reach count as
@@ -94,6 +94,7 @@ class KinematicReach {
   void schedule(std::uint32_t cell, std::uint16_t bins) noexcept;
   void expand(std::uint32_t cell, int bin) noexcept;
   void mark_passed(int cx, int cy) noexcept;
+  bool unknown_near(double x_m, double y_m) const noexcept;
   bool pop(std::uint32_t& state) noexcept;
   void refill_from_pending() noexcept;
 
@@ -104,7 +105,7 @@ class KinematicReach {
   int reach_cells_ = 0;  // how far from its start cell a move's chassis reaches
   std::vector<Move> moves_;
   std::vector<std::uint16_t> visited_;  // per cell, a bit per heading bin
-  std::vector<std::uint16_t> blocked_;  // per cell: the state had a move blocked
+  std::vector<std::uint16_t> blocked_;  // per cell: a move was blocked where unknown cells lay
   std::vector<std::uint16_t> pending_;  // per cell: the state is to be expanded
   std::vector<std::uint64_t> passed_;
   std::vector<std::uint32_t> ring_;  // states (cell * kHeadingBins + bin) to expand
