@@ -109,10 +109,15 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, 
     for (CellBox& window : rho_windows_) window.add(change.clearance_window);
   }
   // Until its search is complete, the kinematic reach cannot tell a group out of reach.
-  std::span<const std::uint64_t> reached;
+  KinematicReachability reached;
   if (reach_) {
     reach_->update(freedom_changed, robot_x_m, robot_y_m, robot_theta);
-    if (reach_->complete()) reached = reach_->passed();
+    if (reach_->complete()) {
+      const Footprint& chassis = config_.kinematics->footprint;
+      reached.passed = reach_->passed();
+      reached.range_m =
+          config_.frontier.approach_range_m + std::max(chassis.front_m, chassis.rear_m);
+    }
   }
   ExplorationStatus status =
       frontiers_.update(map, clearance_, robot_x_m, robot_y_m, change, reached);

@@ -148,19 +148,19 @@ std::span<const std::uint32_t> FrontierMap::target_cells() const noexcept {
 
 ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                                       double robot_x_m, double robot_y_m,
-                                      std::span<const std::uint64_t> reached) noexcept {
+                                      const KinematicReachability& reached) noexcept {
   return update(grid, clearance, robot_x_m, robot_y_m, nullptr, reached);
 }
 
 ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                                       double robot_x_m, double robot_y_m, const MapChange& change,
-                                      std::span<const std::uint64_t> reached) noexcept {
+                                      const KinematicReachability& reached) noexcept {
   return update(grid, clearance, robot_x_m, robot_y_m, &change, reached);
 }
 
 ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                                       double robot_x_m, double robot_y_m, const MapChange* change,
-                                      std::span<const std::uint64_t> reached) noexcept {
+                                      const KinematicReachability& reached) noexcept {
   GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
               grid.resolution() == resolution_);
   // Without a full pass since the grid was last seen, a change cannot say what is stale.
@@ -206,7 +206,7 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
       ++given_up_groups_;
       continue;
     }
-    if (!reached.empty() && !reached_from(grid, group, reached)) {
+    if (!reached.passed.empty() && !reached_by(grid, group, reached)) {
       ++unreachable_groups_;
       continue;
     }
@@ -337,20 +337,24 @@ void FrontierMap::measure_group(const OccupancyGrid& grid, FrontierGroup& group)
   group.score_m = std::numeric_limits<double>::infinity();
 }
 
-bool FrontierMap::reached_from(const OccupancyGrid& grid, const FrontierGroup& group,
-                               std::span<const std::uint64_t> reached) const noexcept {
+bool FrontierMap::reached_by(const OccupancyGrid& grid, const FrontierGroup& group,
+                             const KinematicReachability& reached) const noexcept {
   const auto w = static_cast<std::uint32_t>(width_);
+  const int r = static_cast<int>(reached.range_m / resolution_);
+  const long r2 = static_cast<long>(r) * r;
   for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
     const std::uint32_t c = cells_[i];
     const int cx = static_cast<int>(c % w);
     const int cy = static_cast<int>(c / w);
-    for (const Offset& o : window_) {
-      const int x = cx + o.dx;
-      const int y = cy + o.dy;
-      if (!grid.in_bounds(x, y)) continue;
-      const std::uint32_t a = grid.index(x, y);
-      if (((reached[a >> 6] >> (a & 63U)) & 1U) != 0 && detail::in_sight(grid, x, y, cx, cy)) {
-        return true;
+    for (int y = std::max(cy - r, 0); y <= std::min(cy + r, height_ - 1); ++y) {
+      for (int x = std::max(cx - r, 0); x <= std::min(cx + r, width_ - 1); ++x) {
+        const long dx = x - cx;
+        const long dy = y - cy;
+        const std::uint32_t a = grid.index(x, y);
+        if (dx * dx + dy * dy <= r2 && ((reached.passed[a >> 6] >> (a & 63U)) & 1U) != 0 &&
+            detail::in_sight(grid, x, y, cx, cy)) {
+          return true;
+        }
       }
     }
   }

@@ -163,16 +163,17 @@ TEST(KinematicReach, BadConfigurationsAreRefusedByName) {
 }
 
 // Issue 23's "a dead end the car cannot turn in, recognised": the only frontier lies up the
-// narrow branch, 1.5 m in (unknown beyond y = 3.5 m).
+// narrow branch, 2 m in (unknown beyond y = 4 m): farther from the corridor than the compact
+// car's nose reaches, 0.95 m ahead of its reference point, plus the approach range.
 TEST(KinematicReach, ExplorationPassesOverAFrontierTheCarCannotTurnIntoAndSaysSo) {
   OccupancyGrid map = corridor_with_branch(0.8);
-  map.fill_rect(4.0, 3.5, 4.8, 7.0, Cell::kUnknown);
+  map.fill_rect(4.0, 4.0, 4.8, 7.0, Cell::kUnknown);
   ExplorationTargetConfig config;
   // A vehicle that turns in place is sent up the branch...
   auto point = ExplorationTarget::create(map, config).value();
   ASSERT_EQ(point.choose(1.5, 2.0, 0.0, 0), ExplorationStatus::kTarget);
   EXPECT_NEAR(point.target_x_m(), 4.4, 0.4);
-  EXPECT_NEAR(point.target_y_m(), 3.5, 0.2);
+  EXPECT_NEAR(point.target_y_m(), 4.0, 0.2);
   EXPECT_EQ(point.unreachable_groups(), 0U);
   // ...the car is not: once its search is complete, nothing reachable is left, and the group
   // is counted as out of its reach, not given up on after a minute.
@@ -187,6 +188,28 @@ TEST(KinematicReach, ExplorationPassesOverAFrontierTheCarCannotTurnIntoAndSaysSo
   EXPECT_EQ(status, ExplorationStatus::kComplete);
   EXPECT_EQ(car.unreachable_groups(), 1U);
   EXPECT_EQ(car.given_up_groups(), 0U);
+}
+
+// The car cannot bring its reference point within the approach range of unknown space straight
+// ahead in a corridor too narrow to turn in (its nose would be in it first), but driving up to
+// it is what uncovers it: that frontier stays a target.
+TEST(KinematicReach, UnknownSpaceAheadInANarrowCorridorStaysATarget) {
+  OccupancyGrid map = OccupancyGrid::create(100, 40, 0.1, 0.0, 0.0, Cell::kObstacle).value();
+  map.fill_rect(0.5, 1.6, 9.5, 2.4, Cell::kFree);
+  map.fill_rect(5.0, 1.6, 9.5, 2.4, Cell::kUnknown);
+  ExplorationTargetConfig config;
+  config.kinematics = car_config();
+  auto car = ExplorationTarget::create(map, config).value();
+  const KinematicReach* kinematics = car.kinematics();
+  ASSERT_NE(kinematics, nullptr);
+  ExplorationStatus status = car.choose(1.5, 2.0, 0.0, 0);
+  for (int i = 1; i < 100 && !kinematics->complete(); ++i) {
+    status = car.choose(1.5, 2.0, 0.0, i * 100'000'000);
+  }
+  ASSERT_TRUE(kinematics->complete());
+  EXPECT_EQ(status, ExplorationStatus::kTarget);
+  EXPECT_EQ(car.unreachable_groups(), 0U);
+  EXPECT_NEAR(car.target_x_m(), 4.95, 0.1);
 }
 
 }  // namespace

@@ -76,6 +76,16 @@ struct FrontierConfig {
   bool operator==(const FrontierConfig&) const = default;
 };
 
+// Where a vehicle's kinematics can take its reference point (KinematicReach::passed()), for
+// FrontierMap::update: a group counts as reachable when a passed cell lies within range_m of one
+// of its cells, in sight. range_m reaches past the approach range by the chassis' length ahead
+// of the reference point: a car drives nose first up to unknown space, which its sensor then
+// sees into, and cannot bring its reference point nearer.
+struct KinematicReachability {
+  std::span<const std::uint64_t> passed;  // a bit per cell, row-major; empty: no test
+  double range_m = 0.0;
+};
+
 struct FrontierGroup {
   static constexpr std::uint32_t kNoCell = std::numeric_limits<std::uint32_t>::max();
   std::uint32_t first = 0;  // its cells are FrontierMap::frontier_cells()[first, first + size)
@@ -103,13 +113,12 @@ class FrontierMap {
   // frontier group remains, kRobotOutsideGrid (nothing computed, no target) when the position
   // is not in the grid.
   //
-  // `reached`: where the vehicle's kinematics can take its reference point (a bit per cell,
-  // KinematicReach::passed()), or empty when any cell the chassis' clearance allows will do. A
-  // group with no reached cell in its approach window, in sight, is not a target and is counted
-  // in unreachable_groups().
+  // `reached`: where the vehicle's kinematics can take its reference point, or empty when any
+  // cell the chassis' clearance allows will do. A group it does not reach is not a target and
+  // is counted in unreachable_groups().
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                            double robot_x_m, double robot_y_m,
-                           std::span<const std::uint64_t> reached = {}) noexcept;
+                           const KinematicReachability& reached = {}) noexcept;
   // The same after `change` to the grid of the last update(): frontier cells are detected again
   // and the robot's traversable set rebuilt only where it changed; grouping scans the frontier
   // cells (a bit per cell), and the wavefront what the robot reaches. Equal to a full update().
@@ -121,7 +130,7 @@ class FrontierMap {
   };
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                            double robot_x_m, double robot_y_m, const MapChange& change,
-                           std::span<const std::uint64_t> reached = {}) noexcept;
+                           const KinematicReachability& reached = {}) noexcept;
 
   ExplorationStatus status() const noexcept { return status_; }
   // Sets group `group` of the last update aside (until forgive_all()): a frontier the vehicle could
@@ -164,9 +173,9 @@ class FrontierMap {
               DistanceField field);
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
                            double robot_x_m, double robot_y_m, const MapChange* change,
-                           std::span<const std::uint64_t> reached) noexcept;
-  bool reached_from(const OccupancyGrid& grid, const FrontierGroup& group,
-                    std::span<const std::uint64_t> reached) const noexcept;
+                           const KinematicReachability& reached) noexcept;
+  bool reached_by(const OccupancyGrid& grid, const FrontierGroup& group,
+                  const KinematicReachability& reached) const noexcept;
   void detect(const OccupancyGrid& grid, const CellBox& box) noexcept;
   void group(const OccupancyGrid& grid) noexcept;
   bool is_frontier(std::uint32_t c) const noexcept {
