@@ -1,21 +1,73 @@
 // `grip bench scale` explores one map made larger for real (here: the small room, and 2 x 2 of
 // it side by side, at 10 cells a metre, then the room at 20, briefly, in lockstep): a row per
-// map with its cell count, the planner's start-up, memory and every cycle phase; and bad
-// options are refused.
+// map with its cell count, the planner's start-up, memory and every cycle phase, and the chart
+// of their p99 against the cell count where tools/grip/scale_chart.hpp's layout puts them; and
+// bad options are refused.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "grip_command.hpp"
+#include "png_image.hpp"
 #include "small_room_map.hpp"
 
 namespace {
 
 using grip::testing::CommandRun;
+
+// The layout documented in tools/grip/scale_chart.hpp.
+constexpr double kLeft = 80.0;
+constexpr double kTop = 64.0;
+constexpr double kRightMargin = 170.0;
+constexpr double kBottomMargin = 60.0;
+constexpr const char* kPhases[] = {"prepare_ms", "retain_ms", "grow_ms", "commit_ms", "compute_ms"};
+constexpr grip::testing::Rgb kCycle{0, 0, 0};
+
+// Each run's whole-cycle p99 has its black marker where the layout puts it.
+void expect_cycle_markers(const std::string& png, const nlohmann::json& runs) {
+  const grip::testing::Image image(png);
+  ASSERT_TRUE(image.ok()) << png;
+  ASSERT_EQ(image.width(), 1000);
+  ASSERT_EQ(image.height(), 600);
+  double cells_lo = INFINITY;
+  double cells_hi = 0.0;
+  double ms_lo = INFINITY;
+  double ms_hi = 0.0;
+  for (const auto& run : runs) {
+    cells_lo = std::min(cells_lo, run.at("cells").get<double>());
+    cells_hi = std::max(cells_hi, run.at("cells").get<double>());
+    for (const char* phase : kPhases) {
+      const double ms = run.at(phase).at("p99").get<double>();
+      if (!(ms > 0.0)) continue;
+      ms_lo = std::min(ms_lo, std::max(ms, 1e-3));
+      ms_hi = std::max(ms_hi, ms);
+    }
+  }
+  const double x_lo = std::floor(std::log10(cells_lo));
+  const double x_hi = std::max(std::ceil(std::log10(cells_hi)), x_lo + 1.0);
+  const double y_lo = std::floor(std::log10(ms_lo));
+  const double y_hi = std::max(std::ceil(std::log10(ms_hi)), y_lo + 1.0);
+  const double width = 1000 - kLeft - kRightMargin;
+  const double height = 600 - kTop - kBottomMargin;
+  for (const auto& run : runs) {
+    const double x =
+        kLeft + (std::log10(run.at("cells").get<double>()) - x_lo) / (x_hi - x_lo) * width;
+    const double y =
+        kTop + height -
+        (std::log10(run.at("compute_ms").at("p99").get<double>()) - y_lo) / (y_hi - y_lo) * height;
+    // Beside the centre, off the axis a point at a whole decade sits on.
+    EXPECT_TRUE(image.is(static_cast<int>(std::lround(x)) + 3, static_cast<int>(std::lround(y)) - 3,
+                         kCycle))
+        << "no cycle marker at " << x << ", " << y << " for " << run.dump();
+  }
+  // Nothing black in the plot area's middle column above the markers' band.
+  EXPECT_FALSE(image.is(static_cast<int>(kLeft + width / 2), static_cast<int>(kTop + 2), kCycle));
+}
 
 TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
   const std::string out_dir = ::testing::TempDir() + "grip-bench-scale";
@@ -23,8 +75,10 @@ TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
   std::filesystem::remove_all(out_dir);
   CommandRun r = grip::testing::run_grip(
       "bench scale --map " + grip::testing::write_small_room_map("grip-bench-scale-room.map") +
-      " --tiles 1,2 --subdivisions 10 --max-sim-time 10 --out " + out_dir + " --json " + json);
+      " --tiles 1,2 --subdivisions 10 --max-sim-time 10 --out " + out_dir + " --json " + json +
+      " --png " + json + ".png");
   ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("wrote " + json + ".png"), std::string::npos) << r.output;
   r = grip::testing::run_grip("bench scale --map " +
                               grip::testing::write_small_room_map("grip-bench-scale-room.map") +
                               " --tiles 1 --subdivisions 20 --max-sim-time 10 --out " + out_dir +
@@ -62,6 +116,7 @@ TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
     EXPECT_GT(run.at("compute_ms").at("p50").get<double>(), 0.0);
   }
   EXPECT_NE(r.output.find("     1   20      40000"), std::string::npos) << r.output;
+  expect_cycle_markers(json + ".png", j.at("runs"));
 }
 
 TEST(BenchScaleCommand, BadOptionsAreRefusedNamingWhatIsWrong) {

@@ -4,7 +4,8 @@
 // subdivided (finer cells: the same building at a higher resolution). Each run is a private
 // `grip explore` child process with its report and cycle trace kept in one directory. A row per
 // map: cells, the planner's start-up (map in sync, planning), the process's peak memory, and
-// every cycle phase's p50 / p99 / max. A benchmark: it measures and prints, it asserts nothing.
+// every cycle phase's p50 / p99 / max, and (--png) their p99 against the cell count as a chart.
+// A benchmark: it measures and prints, it asserts nothing.
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,7 @@
 #include "commands.hpp"
 #include "grip/sim/map_file.hpp"
 #include "report_file.hpp"
+#include "scale_chart.hpp"
 #include "stats.hpp"
 #include "vehicle_arg.hpp"
 
@@ -39,10 +41,12 @@ struct BenchScaleOptions {
   bool real_time = false;  // time scale 1 instead of lockstep
   std::string out_dir = "bench-scale";
   std::string json;
+  std::string png;
 };
 
-// The cycle trace's phases (tools/grip/cycle_trace.cpp), in microseconds.
+// The cycle trace's phases (tools/grip/cycle_trace.cpp), in microseconds: the chart's, in order.
 constexpr const char* kPhases[] = {"prepare_us", "retain_us", "grow_us", "commit_us", "compute_us"};
+static_assert(std::size(kPhases) == kScalePhases.size());
 
 struct Run {
   int tiles = 1;
@@ -253,6 +257,24 @@ int run_bench(const BenchScaleOptions& o) {
     j["runs"] = rows;
     if (!write_report(command, o.json, std::move(j), 1)) return 1;
   }
+  if (!o.png.empty()) {
+    std::vector<ScaleChartRow> rows;
+    for (const Run& r : runs) {
+      ScaleChartRow row;
+      row.cells = static_cast<double>(r.cells);
+      for (std::size_t p = 0; p < std::size(kPhases); ++p) row.p99_ms[p] = phase_ms(r, p, 0.99);
+      rows.push_back(row);
+    }
+    const std::string title = std::filesystem::path(o.map).filename().string() + ", " +
+                              vehicle_label(o.robot) + ", " +
+                              (o.real_time ? "real time" : "lockstep") +
+                              ": each cycle phase's p99 against the map's size";
+    if (Status s = write_scale_chart_png(rows, title, o.png); !s) {
+      std::cerr << command << ": " << s.error().message << "\n";
+      return 1;
+    }
+    std::cout << command << ": wrote " << o.png << "\n";
+  }
   return 0;
 }
 
@@ -285,6 +307,7 @@ void register_bench_scale_command(CLI::App& bench) {
   cmd->add_option("--out", o->out_dir, "Directory for every run's report, log and cycle trace")
       ->capture_default_str();
   cmd->add_option("--json", o->json, "Write the table and every run's figures here");
+  cmd->add_option("--png", o->png, "Draw each cycle phase's p99 against the map's size here");
   cmd->callback([o]() {
     if (const int rc = run_bench(*o); rc != 0) throw CLI::RuntimeError(rc);
   });
