@@ -58,12 +58,12 @@ KinematicReach::KinematicReach(const OccupancyGrid& grid, const KinematicReachCo
 // (a move must leave its cell: on a coarse grid the turn is then wider than full lock).
 void KinematicReach::build_moves() noexcept {
   const double resolution = grid_->resolution();
-  step_m_ = std::max(config_.turning_radius_m * kBinRad, 1.5 * resolution);
-  const double curvature = kBinRad / step_m_;
+  const double step_m = std::max(config_.turning_radius_m * kBinRad, 1.5 * resolution);
+  const double curvature = kBinRad / step_m;
   const int samples =
-      std::clamp(static_cast<int>(std::ceil(step_m_ / (0.5 * resolution))), 1, Move::kMaxSamples);
+      std::clamp(static_cast<int>(std::ceil(step_m / (0.5 * resolution))), 1, Move::kMaxSamples);
   reach_cells_ = static_cast<int>(
-                     std::ceil((step_m_ + config_.footprint.circumscribed_radius()) / resolution)) +
+                     std::ceil((step_m + config_.footprint.circumscribed_radius()) / resolution)) +
                  1;
   moves_.resize(static_cast<std::size_t>(kHeadingBins) * kMovesPerBin);
   for (int bin = 0; bin < kHeadingBins; ++bin) {
@@ -74,7 +74,7 @@ void KinematicReach::build_moves() noexcept {
       Move& move = moves_[static_cast<std::size_t>(bin * kMovesPerBin + m)];
       move.samples = samples;
       for (int i = 0; i < samples; ++i) {
-        const double s = direction * step_m_ * (i + 1) / samples;
+        const double s = direction * step_m * (i + 1) / samples;
         const double theta = theta0 + steer * curvature * s;
         double x = s * std::cos(theta0);
         double y = s * std::sin(theta0);

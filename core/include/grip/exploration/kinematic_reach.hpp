@@ -70,7 +70,6 @@ class KinematicReach {
   std::span<const std::uint64_t> passed() const noexcept { return passed_; }
   bool passed(std::uint32_t cell) const noexcept;
   std::uint64_t states_reached() const noexcept { return states_reached_; }
-  double step_m() const noexcept { return step_m_; }
 
  private:
   // One move from a state of some heading bin, relative to the cell it starts in.
@@ -101,7 +100,6 @@ class KinematicReach {
   const OccupancyGrid* grid_;
   KinematicReachConfig config_;
   CollisionChecker checker_;
-  double step_m_ = 0.0;
   int reach_cells_ = 0;  // how far from its start cell a move's chassis reaches
   std::vector<Move> moves_;
   std::vector<std::uint16_t> visited_;  // per cell, a bit per heading bin
