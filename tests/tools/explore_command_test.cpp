@@ -249,6 +249,65 @@ TEST(ExploreCommand, AVehicleDefinedOnlyInAParameterFileExploresWithinItsLimits)
 
 // A planner given another vehicle's file than the simulator's: the vehicle describes itself,
 // and the planner refuses to plan for it, naming the field, as a configuration error (exit 2).
+// A map_server map of a room with a corridor 1.0 m wide east of it and three branches 0.8 m
+// wide off the corridor at right angles (22 m x 9 m at 0.1 m): the paper's car swings into
+// them, a car 1.2 m long with a turning radius of 0.9 m cannot.
+std::string write_comb_map() {
+  constexpr int kWidth = 220;
+  constexpr int kHeight = 90;
+  std::vector<unsigned char> free(kWidth * kHeight, 0);
+  const auto rect = [&](int x0, int y0, int x1, int y1) {  // cells [x0, x1) x [y0, y1)
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) free[static_cast<std::size_t>(y * kWidth + x)] = 1;
+    }
+  };
+  rect(5, 5, 45, 65);
+  rect(45, 15, 215, 25);
+  for (const int x : {90, 130, 170}) rect(x, 25, x + 8, 75);
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream pgm(dir + "grip-comb.pgm", std::ios::binary);
+    pgm << "P5\n" << kWidth << " " << kHeight << "\n255\n";
+    for (int y = kHeight - 1; y >= 0; --y) {  // the image's first row is the map's top
+      for (int x = 0; x < kWidth; ++x) {
+        pgm.put(static_cast<char>(free[static_cast<std::size_t>(y * kWidth + x)] ? 254 : 0));
+      }
+    }
+  }
+  std::ofstream yaml(dir + "grip-comb.yaml");
+  yaml << "image: grip-comb.pgm\nmode: trinary\nresolution: 0.1\norigin: [0.0, 0.0, 0]\n"
+          "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\n";
+  return dir + "grip-comb.yaml";
+}
+
+// Issue 23: frontiers a car cannot reach with its turning radius are recognised early and the
+// run says so. The compact car explores the room and the corridor and ends `stuck` naming the
+// three branches, long before the give-up clock (60 s a group) would have set them aside.
+TEST(ExploreCommand, ACarEndsNamingTheFrontiersItCannotTurnInto) {
+  const std::string params = ::testing::TempDir() + "grip-comb-car.yaml";
+  {
+    std::ofstream out(params);
+    out << "vehicle:\n  model: car\n  max_speed_m_s: 2.0\n  braking_decel_m_s2: 1.2\n"
+           "  wheelbase_m: 0.9\n  footprint: {front_m: 0.95, rear_m: 0.25, half_width_m: 0.3}\n";
+  }
+  const std::string report = ::testing::TempDir() + "grip-comb.json";
+  const CommandRun r = run("explore --map " + write_comb_map() + " --params " + params +
+                           " --start 2.5,3.5,0 --lockstep --max-sim-time 600 --domain 89 "
+                           "--report " +
+                           report);
+  const nlohmann::json j = read_json(report);
+  EXPECT_EQ(j.at("result"), "stuck") << r.output;
+  EXPECT_NE(j.at("reason").get<std::string>().find(
+                "3 frontier group(s) the vehicle cannot reach at its turning radius"),
+            std::string::npos)
+      << j.at("reason");
+  EXPECT_EQ(j.at("planner").at("frontier_groups_unreachable"), 3);
+  EXPECT_EQ(j.at("planner").at("frontier_groups_given_up"), 0);
+  EXPECT_EQ(j.at("collisions"), 0);
+  EXPECT_GT(j.at("coverage").get<double>(), 0.8) << "the room and the corridor are explored";
+  EXPECT_LT(j.at("sim_time_s").get<double>(), 120.0);
+}
+
 TEST(ExploreCommand, APlannerRefusesAVehicleThatIsNotTheOneItsParametersDescribe) {
   const std::string params = ::testing::TempDir() + "grip-slow-car.yaml";
   {
