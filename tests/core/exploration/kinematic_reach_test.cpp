@@ -44,6 +44,18 @@ void search(KinematicReach& reach, const OccupancyGrid& grid, double x, double y
   ASSERT_TRUE(reach.complete());
 }
 
+// Chooses from (x, y), facing east, a choice every 0.1 s, until the car's search is complete;
+// the last choice's status (kRobotOutsideGrid when the search never completed).
+ExplorationStatus choose_until_searched(ExplorationTarget& car, double x, double y) {
+  const KinematicReach* kinematics = car.kinematics();
+  if (kinematics == nullptr) return ExplorationStatus::kRobotOutsideGrid;
+  for (int i = 0; i < 100; ++i) {
+    const ExplorationStatus status = car.choose(x, y, 0.0, i * 100'000'000);
+    if (kinematics->complete()) return status;
+  }
+  return ExplorationStatus::kRobotOutsideGrid;
+}
+
 // Obstacles everywhere but a corridor along y = 2 m, `main_width_m` wide from x = 0.5 to 9 m,
 // and a side branch 0.8 m wide going north from x = 4 m to y = 7 m; 0.1 m cells. The compact car
 // fits in either (0.1 m a side), and a point 0.3 m from every wall passes into the branch.
@@ -179,13 +191,7 @@ TEST(KinematicReach, ExplorationPassesOverAFrontierTheCarCannotTurnIntoAndSaysSo
   // is counted as out of its reach, not given up on after a minute.
   config.kinematics = compact_car_config();
   auto car = ExplorationTarget::create(map, config).value();
-  const KinematicReach* kinematics = car.kinematics();
-  ASSERT_NE(kinematics, nullptr);
-  ExplorationStatus status = car.choose(1.5, 2.0, 0.0, 0);
-  for (int i = 1; i < 100 && !kinematics->complete(); ++i) {
-    status = car.choose(1.5, 2.0, 0.0, i * 100'000'000);
-  }
-  EXPECT_EQ(status, ExplorationStatus::kComplete);
+  EXPECT_EQ(choose_until_searched(car, 1.5, 2.0), ExplorationStatus::kComplete);
   EXPECT_EQ(car.unreachable_groups(), 1U);
   EXPECT_EQ(car.given_up_groups(), 0U);
 }
@@ -200,14 +206,7 @@ TEST(KinematicReach, UnknownSpaceAheadInANarrowCorridorStaysATarget) {
   ExplorationTargetConfig config;
   config.kinematics = car_config();
   auto car = ExplorationTarget::create(map, config).value();
-  const KinematicReach* kinematics = car.kinematics();
-  ASSERT_NE(kinematics, nullptr);
-  ExplorationStatus status = car.choose(1.5, 2.0, 0.0, 0);
-  for (int i = 1; i < 100 && !kinematics->complete(); ++i) {
-    status = car.choose(1.5, 2.0, 0.0, i * 100'000'000);
-  }
-  ASSERT_TRUE(kinematics->complete());
-  EXPECT_EQ(status, ExplorationStatus::kTarget);
+  EXPECT_EQ(choose_until_searched(car, 1.5, 2.0), ExplorationStatus::kTarget);
   EXPECT_EQ(car.unreachable_groups(), 0U);
   EXPECT_NEAR(car.target_x_m(), 4.95, 0.1);
 }
