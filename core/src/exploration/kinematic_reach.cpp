@@ -16,9 +16,10 @@ namespace {
 constexpr double kBinRad = 2.0 * std::numbers::pi / KinematicReach::kHeadingBins;
 constexpr std::size_t kMaxRing = std::size_t{1} << 20;
 
+// theta finite: wrapped first, so that any heading rounds within range.
 int nearest_bin(double theta) noexcept {
-  const double turns = theta / kBinRad;
-  const long bin = std::lround(turns) % KinematicReach::kHeadingBins;
+  const double wrapped = std::remainder(theta, 2.0 * std::numbers::pi);  // [-pi, pi]
+  const long bin = std::lround(wrapped / kBinRad) % KinematicReach::kHeadingBins;
   return static_cast<int>(bin < 0 ? bin + KinematicReach::kHeadingBins : bin);
 }
 
@@ -113,8 +114,9 @@ void KinematicReach::update(const CellBox& changed, double x_m, double y_m, doub
   }
   int cx = 0;
   int cy = 0;
-  if (std::isfinite(theta) && grid.to_cell(x_m, y_m, cx, cy))
+  if (std::isfinite(theta) && grid.to_cell(x_m, y_m, cx, cy)) {
     seed(grid.index(cx, cy), nearest_bin(theta));
+  }
   std::uint32_t state = 0;
   for (std::uint32_t n = 0; n < config_.max_expansions && pop(state); ++n) {
     expand(state / kHeadingBins, static_cast<int>(state % kHeadingBins));
