@@ -72,6 +72,8 @@ double draw_text(cairo_t* cr, const std::string& text, double x_px, double y_px,
   return ext.x_advance;
 }
 
+void set_colour(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
+
 void draw_axes(cairo_t* cr, const PlotArea& area) {
   cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
   cairo_set_line_width(cr, 1.2);

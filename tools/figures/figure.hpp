@@ -61,6 +61,9 @@ Status write_png(cairo_surface_t* surface, const std::string& path);
 double draw_text(cairo_t* cr, const std::string& text, double x_px, double y_px, double size_px,
                  bool bold, double align = 0.0, double angle_rad = 0.0);
 
+// Makes `c` the colour of what is drawn next.
+void set_colour(cairo_t* cr, Rgb c);
+
 // The left and bottom axis lines of a plot area, in black.
 void draw_axes(cairo_t* cr, const PlotArea& area);
 

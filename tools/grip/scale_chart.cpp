@@ -21,8 +21,6 @@ constexpr Rgb kColours[kScalePhases.size()] = {
     {0.8, 0.4, 0.0}, {0.0, 0.6, 0.533}, {0.0, 0.4, 0.8}, {0.6, 0.2, 0.8}, {0.0, 0.0, 0.0}};
 constexpr Rgb kGridColour{0.88, 0.88, 0.88};
 
-void set_colour(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
-
 bool drawn(double ms) { return std::isfinite(ms) && ms > 0.0; }
 
 // log10 axes over whole decades.

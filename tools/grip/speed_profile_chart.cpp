@@ -25,8 +25,6 @@ constexpr Rgb kCollisionColour{1.0, 0.0, 0.0};
 constexpr Rgb kBrakingBoundColour{0.2, 0.65, 0.2};
 constexpr Rgb kGridColour{0.88, 0.88, 0.88};
 
-void set_colour(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
-
 // Data to pixels.
 struct Axes {
   PlotArea area;
