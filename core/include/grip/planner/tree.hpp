@@ -8,7 +8,9 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <memory>
+#include <type_traits>
 
 #include "grip/common/assert.hpp"
 #include "grip/memory/object_pool.hpp"
@@ -47,8 +49,14 @@ class Tree {
         trajectories_(max_trajectories),
         states_per_trajectory_(states_per_trajectory),
         steps_per_record_(steps_per_record),
-        // Value-initialised: every page is touched here, at start-up, not in the planning loop.
-        states_(new State[static_cast<std::size_t>(max_trajectories) * states_per_trajectory]()) {}
+        states_(new State[static_cast<std::size_t>(max_trajectories) * states_per_trajectory]) {
+    // Every page is written here, at start-up, not in the planning loop: value-initialisation
+    // alone would not do it for a state type with its own default constructor (Eigen's leaves
+    // its coefficients unset), and the first propagations would take the page faults.
+    static_assert(std::is_trivially_destructible_v<State>);
+    std::memset(static_cast<void*>(states_.get()), 0,
+                sizeof(State) * max_trajectories * states_per_trajectory);
+  }
 
   // Clears the tree and makes a root edge holding the single state q (zero duration).
   EdgeHandle reset(const State& q) noexcept {
