@@ -9,6 +9,8 @@ namespace grip::sim {
 
 Result<std::vector<std::uint32_t>> reachable_free_cells(const OccupancyGrid& truth, double x_m,
                                                         double y_m, const Footprint& footprint) {
+  auto clearance = ClearanceMap::create_for(truth);
+  if (!clearance) return clearance.error();
   auto centres = DistanceField::create(truth.width(), truth.height(), truth.resolution());
   if (!centres) return centres.error();
   auto body = DistanceField::create(truth.width(), truth.height(), truth.resolution());
@@ -17,7 +19,7 @@ Result<std::vector<std::uint32_t>> reachable_free_cells(const OccupancyGrid& tru
   int cy = 0;
   if (!truth.to_cell(x_m, y_m, cx, cy)) return invalid_argument("the start is outside the map");
   const std::uint32_t start[] = {truth.index(cx, cy)};
-  centres->compute(truth, start, footprint.half_width_m);
+  centres->compute(truth, *clearance, start, footprint.half_width_m);
   const bool by_chassis = centres->traversable(start[0]);
   std::vector<std::uint32_t> from;
   if (by_chassis) {

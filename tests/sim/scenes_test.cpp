@@ -104,7 +104,8 @@ TEST_P(EveryScene, TheGoalIsReachableFromTheStartWithTheRobotsInflation) {
   ASSERT_FALSE(goal.empty());
   auto field = DistanceField::create(300, 300, 0.1);
   ASSERT_TRUE(field.ok());
-  field->compute(scene.grid, goal, 0.25);
+  const ClearanceMap clearance = ClearanceMap::create_for(scene.grid).value();
+  field->compute(scene.grid, clearance, goal, 0.25);
   const double distance = field->distance_m(scene.start_x_m, scene.start_y_m);
   EXPECT_TRUE(std::isfinite(distance));
   // The way is long: far longer than the straight line.

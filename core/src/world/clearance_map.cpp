@@ -10,6 +10,12 @@ namespace grip {
 
 namespace {
 
+// update()'s scratch holds a window of at least this many cells, or an eighth of the map: a
+// sensor sweep's change grown by the clearance the users ask for fits many times over, and a
+// larger change costs about as much as compute(), which update() then does instead. A scratch
+// the size of the map would add a third to what every clearance map costs per cell.
+constexpr std::size_t kMinWindowCells = std::size_t{1} << 20;
+
 // 1-D squared distance transform of the sampled function f over 0..n-1 (Felzenszwalb &
 // Huttenlocher, "Distance Transforms of Sampled Functions", 2012): d[q] = min_p (q - p)^2 + f[p].
 // All f are finite integers here; the parabola intersections are exact rationals whose
@@ -54,7 +60,7 @@ ClearanceMap::ClearanceMap(int width_cells, int height_cells, double resolution_
       resolution_(resolution_m),
       half_diagonal_m_(resolution_m * std::sqrt(0.5)),
       d2_(static_cast<std::size_t>(width_cells) * static_cast<std::size_t>(height_cells), 0),
-      columns_(d2_.size(), 0) {
+      columns_(std::min(d2_.size(), std::max(kMinWindowCells, d2_.size() / 8)), 0) {
   const auto longest = static_cast<std::size_t>(std::max(width_cells, height_cells)) + 2;
   f_.resize(longest);
   d_.resize(longest);
@@ -148,6 +154,12 @@ CellBox ClearanceMap::update(const OccupancyGrid& grid, const CellBox& changed,
   };
   const CellBox window = clip(changed, reach);
   const CellBox source = clip(window, reach);
+  if (static_cast<std::size_t>(source.x1 - source.x0 + 1) *
+          static_cast<std::size_t>(window.y1 - window.y0 + 1) >
+      columns_.size()) {
+    compute(grid);
+    return CellBox{0, 0, width_ - 1, height_ - 1};
+  }
   // Distances that no cell of S can reach: no obstacle in that direction within S.
   constexpr std::int64_t kFar = std::int64_t{1} << 24;
   const std::span<const Cell> cells = grid.cells();

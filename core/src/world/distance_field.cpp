@@ -95,15 +95,13 @@ void run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
 
 }  // namespace
 
-DistanceField::DistanceField(int width_cells, int height_cells, double resolution_m,
-                             ClearanceMap clearance)
+DistanceField::DistanceField(int width_cells, int height_cells, double resolution_m)
     : width_(width_cells),
       height_(height_cells),
       resolution_(resolution_m),
       inv_resolution_(1.0 / resolution_m),
       metres_per_unit_(resolution_m / kCostUnitsPerCell),
-      padded_width_(static_cast<std::uint32_t>(width_cells) + 2),
-      clearance_(std::move(clearance)) {
+      padded_width_(static_cast<std::uint32_t>(width_cells) + 2) {
   const std::size_t padded_cells =
       static_cast<std::size_t>(width_cells + 2) * static_cast<std::size_t>(height_cells + 2);
   traversable_.assign(padded_cells, 0);
@@ -119,11 +117,7 @@ Result<DistanceField> DistanceField::create(int width_cells, int height_cells,
           detail::check_grid_size("DistanceField", width_cells, height_cells, resolution_m)) {
     return *std::move(error);
   }
-  auto clearance = ClearanceMap::create(width_cells, height_cells, resolution_m);
-  if (!clearance.ok()) {
-    return clearance.error();
-  }
-  return DistanceField(width_cells, height_cells, resolution_m, std::move(clearance).value());
+  return DistanceField(width_cells, height_cells, resolution_m);
 }
 
 std::uint32_t DistanceField::padded(std::uint32_t cell_index) const noexcept {
@@ -166,13 +160,8 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
   source_revision_ = grid.revision();
 }
 
-void DistanceField::prepare(const OccupancyGrid& grid, double inflation_m) noexcept {
-  if (inflation_m > 0.0) {
-    clearance_.compute(grid);
-    build_mask(grid, &clearance_, inflation_m, whole());
-  } else {
-    build_mask(grid, nullptr, inflation_m, whole());
-  }
+void DistanceField::prepare(const OccupancyGrid& grid) noexcept {
+  build_mask(grid, nullptr, 0.0, whole());
 }
 
 void DistanceField::prepare(const OccupancyGrid& grid, const ClearanceMap& clearance,
@@ -198,9 +187,8 @@ void DistanceField::prepare(const OccupancyGrid& grid, const ClearanceMap& clear
 }
 
 std::uint32_t DistanceField::compute(const OccupancyGrid& grid,
-                                     std::span<const std::uint32_t> target_cells,
-                                     double inflation_m) noexcept {
-  prepare(grid, inflation_m);
+                                     std::span<const std::uint32_t> target_cells) noexcept {
+  prepare(grid);
   return propagate(target_cells);
 }
 

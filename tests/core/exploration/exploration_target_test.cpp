@@ -129,7 +129,8 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
             << "round " << round << " at " << x << ", " << y;
       }
       if (rng.below(4) == 0) {
-        planners_rho.compute(planners_map, incremental.approach_cells(),
+        const ClearanceMap clearance = ClearanceMap::create_for(planners_map).value();
+        planners_rho.compute(planners_map, clearance, incremental.approach_cells(),
                              config.frontier.clearance_m);
       }
       std::swap(planners_rho, incremental.rho());

@@ -114,6 +114,34 @@ TEST(ClearanceMapTest, AWindowedUpdateAnswersEveryThresholdUpToItsBoundAsAFullCo
   }
 }
 
+TEST(ClearanceMapTest, AChangeLargerThanTheUpdateWindowRecomputesTheWholeMap) {
+  // GIVEN a map larger than the smallest update window (2^20 cells) with walls at random, and a
+  // change that spans it: its window holds more cells than the scratch sized at creation
+  OccupancyGrid grid = make_grid(1100, 1000, 0.05);
+  Random random(5);
+  for (int k = 0; k < 2000; ++k) {
+    grid.set(static_cast<int>(random.below(1100)), static_cast<int>(random.below(1000)),
+             Cell::kObstacle);
+  }
+  auto map = ClearanceMap::create_for(grid);
+  ASSERT_TRUE(map.ok());
+  grid.set(2, 3, Cell::kObstacle);
+  grid.set(1090, 990, Cell::kUnknown);
+  // WHEN it is updated with a bound
+  const CellBox rewritten = map->update(grid, CellBox{2, 3, 1090, 990}, 25);
+  // THEN the whole map was rewritten, exact everywhere, as compute() leaves it
+  EXPECT_EQ(rewritten.x0, 0);
+  EXPECT_EQ(rewritten.y0, 0);
+  EXPECT_EQ(rewritten.x1, 1099);
+  EXPECT_EQ(rewritten.y1, 999);
+  EXPECT_EQ(map->exact_up_to(), std::numeric_limits<std::uint32_t>::max());
+  EXPECT_EQ(map->source_revision(), grid.revision());
+  const ClearanceMap full = ClearanceMap::create_for(grid).value();
+  EXPECT_TRUE(std::equal(map->squared_cells().begin(), map->squared_cells().end(),
+                         full.squared_cells().begin()));
+  EXPECT_EQ(map->squared_cells(grid.index(3, 3)), 1U);
+}
+
 TEST(ClearanceMapTest, AnEmptyChangeOnlyFollowsTheRevision) {
   OccupancyGrid grid = make_grid(20, 20, 0.1);
   auto map = ClearanceMap::create_for(grid);

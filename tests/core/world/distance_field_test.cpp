@@ -146,7 +146,7 @@ TEST(DistanceFieldTest, MatchesTheReferenceWithInflation) {
     }
     const std::vector<std::uint32_t> targets = {random.below(grid.cell_count())};
     DistanceField field = make_field(grid);
-    field.compute(grid, targets, inflation);
+    field.compute(grid, *clearance, targets, inflation);
     const std::vector<std::uint32_t> expected = reference_costs(grid, traversable, targets);
     for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
       ASSERT_EQ(field.cost_at(i), expected[i]) << "trial " << trial << " cell " << i;
@@ -276,12 +276,13 @@ TEST(DistanceFieldTest, InflationClosesNarrowPassages) {
   grid.fill_rect(2.0, 0.0, 2.09, 4.0, Cell::kObstacle);
   grid.fill_rect(2.0, 0.5, 2.09, 0.79, Cell::kFree);  // rows 5..7: 0.3 m
   grid.fill_rect(2.0, 2.5, 2.09, 3.69, Cell::kFree);  // rows 25..36: 1.2 m
+  const ClearanceMap clearance = ClearanceMap::create_for(grid).value();
   DistanceField field = make_field(grid);
   const std::vector<std::uint32_t> target = {grid.index(10, 6)};
-  field.compute(grid, target, 0.0);
+  field.compute(grid, clearance, target, 0.0);
   const double through_gap = field.distance_m(3.05, 0.65);
   EXPECT_NEAR(through_gap, 2.0, 1e-9);  // straight through the narrow gap
-  field.compute(grid, target, 0.25);
+  field.compute(grid, clearance, target, 0.25);
   const double around = field.distance_m(3.05, 0.65);
   EXPECT_TRUE(std::isfinite(around));  // through the wide gap instead
   EXPECT_GT(around, 4.0);
@@ -289,22 +290,26 @@ TEST(DistanceFieldTest, InflationClosesNarrowPassages) {
   EXPECT_TRUE(field.traversable(grid.index(20, 30)));
   EXPECT_DOUBLE_EQ(field.inflation(), 0.25);
   // Enough inflation closes the wide gap too.
-  field.compute(grid, target, 0.7);
+  field.compute(grid, clearance, target, 0.7);
   EXPECT_EQ(field.distance_m(3.05, 0.65), kInfinity);
 }
 
-TEST(DistanceFieldTest, ASharedClearanceMapGivesTheSameField) {
+TEST(DistanceFieldTest, WithoutInflationTheClearanceMapIsNotRead) {
+  // A stale clearance map (the grid changed since) passes with inflation 0: every free cell is
+  // traversable, as for the field computed without one.
   Random random(23);
-  const OccupancyGrid grid = random_grid(random, 50, 40, 0.05);
+  OccupancyGrid grid = random_grid(random, 50, 40, 0.05);
   auto clearance = ClearanceMap::create_for(grid);
   ASSERT_TRUE(clearance.ok());
-  DistanceField own = make_field(grid);
-  DistanceField shared = make_field(grid);
+  grid.set(3, 4, Cell::kObstacle);
+  DistanceField without = make_field(grid);
+  DistanceField with = make_field(grid);
   const std::vector<std::uint32_t> target = {grid.index(25, 20)};
-  own.compute(grid, target, 0.2);
-  shared.compute(grid, *clearance, target, 0.2);
+  without.compute(grid, target);
+  with.compute(grid, *clearance, target, 0.0);
+  EXPECT_FALSE(with.traversable(grid.index(3, 4)));
   for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
-    ASSERT_EQ(own.cost_at(i), shared.cost_at(i));
+    ASSERT_EQ(without.cost_at(i), with.cost_at(i));
   }
 }
 

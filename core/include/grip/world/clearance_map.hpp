@@ -41,7 +41,9 @@ class ClearanceMap {
   // compute(); that is all the collision checker and the distance field ask (exact_up_to()
   // tells the bound). Returns the cells rewritten (the window). Why: in exploration the map
   // changes every cycle, near the vehicle, and a whole-map pass would be paid on the planning
-  // thread each time. Asserts compute() ran first.
+  // thread each time. A window larger than the scratch (the larger of 2^20 cells and an
+  // eighth of the map) is recomputed whole instead, and the whole map returned. Asserts compute()
+  // ran first.
   CellBox update(const OccupancyGrid& grid, const CellBox& changed,
                  std::uint32_t exact_up_to_d2) noexcept;
   // The largest d2 known exact (UINT32_MAX after compute(); the smallest bound of the updates
@@ -81,7 +83,8 @@ class ClearanceMap {
   bool computed_ = false;
   std::uint32_t exact_up_to_d2_ = 0;
   std::vector<std::uint32_t> d2_;
-  // Scratch for the transform, sized at creation (column distances of update()'s window).
+  // Scratch for the transform, sized at creation (column distances of update()'s window: the
+  // larger of 2^20 cells and an eighth of the map, at most the map).
   std::vector<std::uint32_t> columns_;
   std::vector<std::int64_t> f_;
   std::vector<std::int64_t> d_;

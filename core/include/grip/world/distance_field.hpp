@@ -40,21 +40,22 @@ class DistanceField {
   // OccupancyGrid::create.
   static Result<DistanceField> create(int width_cells, int height_cells, double resolution_m);
 
-  // Builds the traversable set from the grid (computing a clearance map internally when
-  // inflation_m > 0) and runs the wavefront from target_cells (grid indices). Returns the
-  // number of reachable cells, targets included; 0 for an empty target set (everything then
-  // reads unreachable). Asserts: the grid's size and resolution match create(), every target
-  // < cell_count(), inflation_m finite and >= 0.
-  std::uint32_t compute(const OccupancyGrid& grid, std::span<const std::uint32_t> target_cells,
-                        double inflation_m = 0.0) noexcept;
-  // Same, sharing a clearance map computed from this grid at its current revision (asserted),
-  // e.g. CollisionChecker::clearance() after refresh().
+  // Builds the traversable set from the grid, every free cell traversable (no inflation), and
+  // runs the wavefront from target_cells (grid indices). Returns the number of reachable
+  // cells, targets included; 0 for an empty target set (everything then reads unreachable).
+  // Asserts: the grid's size and resolution match create(), every target < cell_count().
+  std::uint32_t compute(const OccupancyGrid& grid,
+                        std::span<const std::uint32_t> target_cells) noexcept;
+  // Same with an inflation: the clearance map is computed from this grid at its current revision
+  // (asserted), e.g. CollisionChecker::clearance() after refresh(); it is not the field's own,
+  // so that the fields and checkers of one map share one (a map's worth of memory each).
+  // Asserts inflation_m finite and >= 0.
   std::uint32_t compute(const OccupancyGrid& grid, const ClearanceMap& clearance,
                         std::span<const std::uint32_t> target_cells, double inflation_m) noexcept;
 
   // The two halves of compute(): prepare() fixes the traversable set (and the grid origin used
   // by distance_m) without touching the distances; propagate() runs the wavefront over it.
-  void prepare(const OccupancyGrid& grid, double inflation_m = 0.0) noexcept;
+  void prepare(const OccupancyGrid& grid) noexcept;
   void prepare(const OccupancyGrid& grid, const ClearanceMap& clearance,
                double inflation_m) noexcept;
   // The same after a change confined to `window` since this field's last prepare() from this
@@ -118,7 +119,7 @@ class DistanceField {
     std::uint32_t head[kBuckets];
   };
 
-  DistanceField(int width_cells, int height_cells, double resolution_m, ClearanceMap clearance);
+  DistanceField(int width_cells, int height_cells, double resolution_m);
   void build_mask(const OccupancyGrid& grid, const ClearanceMap* clearance, double inflation_m,
                   const CellBox& window) noexcept;
   CellBox whole() const noexcept { return CellBox{0, 0, width_ - 1, height_ - 1}; }
@@ -140,8 +141,7 @@ class DistanceField {
   std::uint32_t tag_ = 0;
   std::uint32_t reached_first_ = kNil;  // padded index range the last wavefront labelled
   std::uint32_t reached_last_ = 0;
-  Search field_;            // the wavefront's labels are the field
-  ClearanceMap clearance_;  // used when compute() is not given one
+  Search field_;  // the wavefront's labels are the field
 };
 
 }  // namespace grip
