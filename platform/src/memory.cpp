@@ -4,9 +4,14 @@
 #include <linux/capability.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <string>
 
 #include "grip/common/assert.hpp"
 #include "grip/platform/os_call.hpp"
+#include "grip/platform/proc_files.hpp"
 #include "privileges.hpp"
 
 namespace grip::platform {
@@ -42,6 +47,33 @@ MemoryLockOutcome lock_process_memory() {
   }
   return MemoryLockOutcome{false,
                            "mlockall: " + std::string(errno_name(locked.error)) + " (" + why + ")"};
+}
+
+void prefer_huge_pages(char** argv) noexcept {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  (void)argv;
+#else
+  try {
+    constexpr const char* kTunables = "GLIBC_TUNABLES";
+    constexpr const char* kHugePages = "glibc.malloc.hugetlb";
+    const char* set = std::getenv(kTunables);
+    const std::string before = set != nullptr ? set : "";
+    if (before.find(kHugePages) != std::string::npos) return;
+    const auto mode = detail::read_small_file("/sys/kernel/mm/transparent_hugepage/enabled");
+    if (!mode || mode.value().find("[never]") != std::string::npos) return;
+    const std::string after = (before.empty() ? "" : before + ":") + kHugePages + "=1";
+    if (::setenv(kTunables, after.c_str(), 1) != 0) return;
+    ::execv("/proc/self/exe", argv);
+    // Still here: go on as started, with the environment as it was.
+    if (set != nullptr) {
+      ::setenv(kTunables, before.c_str(), 1);
+    } else {
+      ::unsetenv(kTunables);
+    }
+  } catch (...) {
+    // Out of memory at start-up: go on without huge pages.
+  }
+#endif
 }
 
 // Out of line, so that the alloca'd block is released when it returns. The writes go through a

@@ -12,6 +12,9 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
+
+#include "grip_command.hpp"
 
 namespace grip::platform {
 namespace {
@@ -140,6 +143,75 @@ TEST(RealtimeMemory, PrefaultStackOfZeroBytesDoesNothing) {
   const ThreadUsage before = thread_usage();
   prefault_stack(0);
   EXPECT_EQ(thread_usage().major_faults, before.major_faults);
+}
+
+// ---- Huge pages: the probe (tests/platform/probe) run with the environment a user might have.
+
+constexpr const char* kHugePagesProbe = GRIP_BINARY_DIR "/bin/grip_huge_pages_probe";
+
+struct ProbeRun {
+  std::vector<std::string> started;  // "pid=... argument=..." of every start
+  std::string tunables;
+  long long anon_huge_kb = -1;
+};
+
+ProbeRun run_huge_pages_probe(const std::string& environment) {
+  const testing::CommandRun run =
+      testing::run_command("env " + environment + " " + kHugePagesProbe + " an-argument 2>&1");
+  EXPECT_EQ(run.status, 0) << run.output;
+  ProbeRun probe;
+  std::istringstream lines(run.output);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const auto value = [&](const std::string& key) {
+      return line.rfind(key, 0) == 0 ? line.substr(key.size()) : std::string{};
+    };
+    if (line.rfind("GRIP_PROBE started ", 0) == 0)
+      probe.started.push_back(value("GRIP_PROBE started "));
+    if (line.rfind("GRIP_PROBE tunables=", 0) == 0) probe.tunables = value("GRIP_PROBE tunables=");
+    if (line.rfind("GRIP_PROBE anon_huge_kb=", 0) == 0) {
+      probe.anon_huge_kb = std::stoll(value("GRIP_PROBE anon_huge_kb="));
+    }
+  }
+  return probe;
+}
+
+bool machine_offers_huge_pages() {
+  std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string text;
+  std::getline(mode, text);
+  return !text.empty() && text.find("[never]") == std::string::npos;
+}
+
+TEST(HugePages, TheProcessStartsAgainOnceAsItWasWithGlibcAskedForHugePages) {
+  // GIVEN no glibc tunables, or others than huge pages
+  for (const std::string& before : {std::string{}, std::string{"glibc.malloc.perturb=0"}}) {
+    const ProbeRun probe =
+        run_huge_pages_probe(before.empty() ? "-u GLIBC_TUNABLES" : "GLIBC_TUNABLES=" + before);
+    ASSERT_FALSE(probe.started.empty());
+    EXPECT_NE(probe.started[0].find(" argument=an-argument"), std::string::npos);
+    if (kSanitizerBuild || !machine_offers_huge_pages()) {
+      // THEN under a sanitizer, or on a machine without transparent huge pages, nothing changes
+      EXPECT_EQ(probe.started.size(), 1U);
+      EXPECT_EQ(probe.tunables, before);
+      continue;
+    }
+    // THEN it started again once, the same process with the same arguments, the tunable added
+    // to the others, and a large block it writes lies in huge pages
+    ASSERT_EQ(probe.started.size(), 2U);
+    EXPECT_EQ(probe.started[1], probe.started[0]);
+    EXPECT_EQ(probe.tunables,
+              before.empty() ? "glibc.malloc.hugetlb=1" : before + ":glibc.malloc.hugetlb=1");
+    EXPECT_GT(probe.anon_huge_kb, 0);
+  }
+}
+
+TEST(HugePages, AUsersOwnChoiceIsKept) {
+  // GIVEN a user who turned glibc's huge pages off
+  const ProbeRun probe = run_huge_pages_probe("GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
+  // THEN the process is not started again and the choice stands
+  EXPECT_EQ(probe.started.size(), 1U);
+  EXPECT_EQ(probe.tunables, "glibc.malloc.hugetlb=0");
 }
 
 }  // namespace

@@ -6,8 +6,11 @@
 
 #include "build_info.hpp"
 #include "commands.hpp"
+#include "grip/platform/memory.hpp"
 
 int main(int argc, char** argv) {
+  // First, before anything allocates: it may start the process again.
+  grip::platform::prefer_huge_pages(argv);
   CLI::App app{"grip: GRIP (Greedy, Incremental, Path-directed) kinodynamic replanning runtime"};
   app.set_version_flag("--version", "grip " + std::string(grip::tools::grip_version()) +
                                         " (revision " + std::string(grip::tools::grip_revision()) +

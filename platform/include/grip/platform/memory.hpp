@@ -21,6 +21,17 @@ struct MemoryLockOutcome {
 // mlockall into a no-op, it reports locked = false with that reason.
 [[nodiscard]] MemoryLockOutcome lock_process_memory();
 
+// Asks glibc to back its large allocations with transparent huge pages (2 MiB): a
+// building-sized map's per-cell arrays, hundreds of MB written at start-up, then take a fault
+// per 2 MiB instead of per 4 KiB, and the whole-map passes fewer TLB misses. glibc reads its
+// tunable (GLIBC_TUNABLES glibc.malloc.hugetlb=1: madvise(MADV_HUGEPAGE) on its mappings) only
+// at process start, so this re-executes the process once, with the same arguments and the
+// tunable added, before anything else has run: call it first thing in main(). It returns, doing
+// nothing, when the tunable is already set (by a previous call, or by a user who chose a value,
+// 0 included), when the kernel's transparent huge pages are "never", under a sanitizer (its
+// allocator ignores the tunable), or when re-executing fails; it does not return otherwise.
+void prefer_huge_pages(char** argv) noexcept;
+
 // Touches `bytes` of the calling thread's stack below the current frame, one write per 4 KiB,
 // so that the first deep call on the real-time path does not fault them in. `bytes` must stay
 // well below the free stack (a thread's stack size minus what is in use): more overflows it.
