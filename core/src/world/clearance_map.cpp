@@ -13,7 +13,7 @@ namespace {
 // update()'s scratch holds a window of at least this many cells, or an eighth of the map: a
 // sensor sweep's change grown by the clearance the users ask for fits many times over, and a
 // larger change costs about as much as compute(), which update() then does instead. A scratch
-// the size of the map would add a third to what every clearance map costs per cell.
+// the size of the map would double what every clearance map costs per cell.
 constexpr std::size_t kMinWindowCells = std::size_t{1} << 20;
 
 // 1-D squared distance transform of the sampled function f over 0..n-1 (Felzenszwalb &
