@@ -163,15 +163,16 @@ ProbeRun run_huge_pages_probe(const std::string& environment) {
   std::istringstream lines(run.output);
   std::string line;
   while (std::getline(lines, line)) {
-    const auto value = [&](const std::string& key) {
-      return line.rfind(key, 0) == 0 ? line.substr(key.size()) : std::string{};
+    // The rest of the line after `key`, when the line starts with it.
+    std::string rest;
+    const auto after = [&](const std::string& key) {
+      if (line.rfind(key, 0) != 0) return false;
+      rest = line.substr(key.size());
+      return true;
     };
-    if (line.rfind("GRIP_PROBE started ", 0) == 0)
-      probe.started.push_back(value("GRIP_PROBE started "));
-    if (line.rfind("GRIP_PROBE tunables=", 0) == 0) probe.tunables = value("GRIP_PROBE tunables=");
-    if (line.rfind("GRIP_PROBE anon_huge_kb=", 0) == 0) {
-      probe.anon_huge_kb = std::stoll(value("GRIP_PROBE anon_huge_kb="));
-    }
+    if (after("GRIP_PROBE started ")) probe.started.push_back(rest);
+    if (after("GRIP_PROBE tunables=")) probe.tunables = rest;
+    if (after("GRIP_PROBE anon_huge_kb=")) probe.anon_huge_kb = std::stoll(rest);
   }
   return probe;
 }
