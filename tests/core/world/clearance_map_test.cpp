@@ -60,6 +60,15 @@ TEST(ClearanceMapTest, MatchesABruteForceTransformOnRandomGrids) {
   }
 }
 
+// `count` cells made obstacles at random (some may repeat).
+void scatter_obstacles(OccupancyGrid& grid, Random& random, int count) {
+  for (int k = 0; k < count; ++k) {
+    grid.set(static_cast<int>(random.below(static_cast<std::uint32_t>(grid.width()))),
+             static_cast<int>(random.below(static_cast<std::uint32_t>(grid.height()))),
+             Cell::kObstacle);
+  }
+}
+
 // Every cell changed at random inside a box, free <-> obstacle or unknown.
 CellBox change_a_box(OccupancyGrid& grid, Random& random) {
   const int x0 = static_cast<int>(random.below(static_cast<std::uint32_t>(grid.width())));
@@ -119,10 +128,7 @@ TEST(ClearanceMapTest, AChangeLargerThanTheUpdateWindowRecomputesTheWholeMap) {
   // change that spans it: its window holds more cells than the scratch sized at creation
   OccupancyGrid grid = make_grid(1100, 1000, 0.05);
   Random random(5);
-  for (int k = 0; k < 2000; ++k) {
-    grid.set(static_cast<int>(random.below(1100)), static_cast<int>(random.below(1000)),
-             Cell::kObstacle);
-  }
+  scatter_obstacles(grid, random, 2000);
   auto map = ClearanceMap::create_for(grid);
   ASSERT_TRUE(map.ok());
   grid.set(2, 3, Cell::kObstacle);
@@ -188,10 +194,7 @@ TEST(ClearanceMapTest, ClearanceIsALowerBoundOfTheDistanceToNonFreeSpace) {
 TEST(ClearanceMapTest, SquaredThresholdSelectsExactlyTheCellsWithEnoughClearance) {
   OccupancyGrid grid = make_grid(40, 40, 0.1);
   Random random(3);
-  for (int k = 0; k < 60; ++k) {
-    grid.set(static_cast<int>(random.below(40)), static_cast<int>(random.below(40)),
-             Cell::kObstacle);
-  }
+  scatter_obstacles(grid, random, 60);
   auto map = ClearanceMap::create_for(grid);
   ASSERT_TRUE(map.ok());
   EXPECT_EQ(map->squared_cells_at_least(0.0), 0u);
