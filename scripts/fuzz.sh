@@ -5,6 +5,7 @@
 #
 #   scripts/fuzz.sh                      # every target, FUZZ_SECONDS (default 25) each: CI
 #   FUZZ_SECONDS=0 FUZZ_RUNS=10000000 scripts/fuzz.sh plan goal   # 10 million runs of two
+#   FUZZ_TIMEOUT=120 chrt -i 0 scripts/fuzz.sh ...                 # beside other work
 #
 # New inputs the fuzzer finds go to build/fuzz/corpus/<target>, not into the repository: copy
 # one into tests/fuzz/corpus/<target>/ when it is worth keeping (a regression, a new shape).
@@ -16,6 +17,8 @@ targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=("${all[@]}")
 seconds=${FUZZ_SECONDS:-25}
 runs=${FUZZ_RUNS:--1}
+# Seconds one input may take before it counts as a hang; raise it for a long run at idle priority.
+unit_timeout=${FUZZ_TIMEOUT:-10}
 
 cmake --preset fuzz >/dev/null
 cmake --build build/fuzz -j"${FUZZ_BUILD_JOBS:-2}" --target grip_fuzz
@@ -34,7 +37,7 @@ for t in "${targets[@]}"; do
   if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
       UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
       "$exe" -max_total_time="$seconds" -runs="$runs" -max_len="${max_len[$t]:-2048}" \
-      -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      -timeout="$unit_timeout" -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="build/fuzz/artifacts/$t-" "$work" "tests/fuzz/corpus/$t" \
       >"build/fuzz/$t.log" 2>&1; then
     failed+=("$t")

@@ -1,10 +1,12 @@
 // `grip bench scale`: how grip's cost grows with the map. The same exploration (one vehicle,
 // one seed, a fixed simulated time) on one MovingAI map made larger, from about 0.4 M to 16 M
 // cells: tiled (n x n copies side by side: a larger building at the same resolution) and
-// subdivided (finer cells: the same building at a higher resolution). Each run is a private
-// `grip explore` child process with its report and cycle trace kept in one directory. A row per
-// map: cells, the planner's start-up (map in sync, planning), the process's peak memory, and
-// every cycle phase's p50 / p99 / max, and (--png) their p99 against the cell count as a chart.
+// subdivided (finer cells: the same building at a higher resolution). Every run has the same
+// sensor (its range in metres: what `auto` gives the untiled map), so that the map's size is
+// the only thing that changes; left to `auto` it would reach a tenth of the tiled map. Each run is
+// a private `grip explore` child process with its report and cycle trace kept in one directory. A
+// row per map: cells, the planner's start-up (map in sync, planning), the process's peak memory,
+// and every cycle phase's p50 / p99 / max, and (--png) their p99 against the cell count as a chart.
 // A benchmark: it measures and prints, it asserts nothing.
 
 #include <algorithm>
@@ -38,7 +40,8 @@ struct BenchScaleOptions {
   std::vector<int> subdivisions{10};
   std::string robot = "dd-vel";
   double max_sim_time_s = 60.0;
-  bool real_time = false;  // time scale 1 instead of lockstep
+  double sensor_range_m = 0.0;  // 0: a tenth of the untiled map's larger side
+  bool real_time = false;       // time scale 1 instead of lockstep
   std::string out_dir = "bench-scale";
   std::string json;
   std::string png;
@@ -114,7 +117,7 @@ bool write_tiled(const sim::LoadedMap& map, int n, const std::string& path) {
 }
 
 std::vector<std::string> explore_args(const BenchScaleOptions& o, const Run& r,
-                                      const std::string& self) {
+                                      double sensor_range_m, const std::string& self) {
   std::vector<std::string> args{self,
                                 "explore",
                                 "--map",
@@ -125,6 +128,8 @@ std::vector<std::string> explore_args(const BenchScaleOptions& o, const Run& r,
                                 o.robot,
                                 "--max-sim-time",
                                 std::to_string(o.max_sim_time_s),
+                                "--sensor-range",
+                                std::to_string(sensor_range_m),
                                 "--private",
                                 "--report",
                                 o.out_dir + "/" + r.stem + ".json",
@@ -187,6 +192,9 @@ int run_bench(const BenchScaleOptions& o) {
     std::cerr << command << ": " << loaded.error().message << "\n";
     return 2;
   }
+  const double sensor_range_m =
+      o.sensor_range_m > 0.0 ? o.sensor_range_m
+                             : 0.1 * std::max(loaded->grid.width_m(), loaded->grid.height_m());
   const std::string stem = std::filesystem::path(o.map).stem().string();
   std::vector<Run> runs;
   for (const int n : o.tiles) {
@@ -210,15 +218,15 @@ int run_bench(const BenchScaleOptions& o) {
     }
   }
   std::cout << command << ": " << o.map << " in " << runs.size() << " sizes, "
-            << vehicle_label(o.robot) << ", " << (o.real_time ? "real time" : "lockstep") << ", "
-            << o.max_sim_time_s << " s simulated each; reports in " << o.out_dir << "/"
-            << std::endl;
+            << vehicle_label(o.robot) << ", sensor range " << sensor_range_m << " m, "
+            << (o.real_time ? "real time" : "lockstep") << ", " << o.max_sim_time_s
+            << " s simulated each; reports in " << o.out_dir << "/" << std::endl;
   for (Run& r : runs) {
     const std::string report = o.out_dir + "/" + r.stem + ".json";
     std::error_code ec;
     std::filesystem::remove(report, ec);
-    auto child =
-        Child::spawn(explore_args(o, r, self), {}, o.out_dir + "/" + r.stem + ".log", true);
+    auto child = Child::spawn(explore_args(o, r, sensor_range_m, self), {},
+                              o.out_dir + "/" + r.stem + ".log", true);
     if (child) r.exit_status = child->wait();
     r.report = read_child_report(report);
     if (!read_trace(o.out_dir + "/" + r.stem + ".cycles.csv", r)) r.phases.clear();
@@ -234,6 +242,7 @@ int run_bench(const BenchScaleOptions& o) {
     j["robot"] = vehicle_label(o.robot);
     j["mode"] = o.real_time ? "real time" : "lockstep";
     j["max_sim_time_s"] = o.max_sim_time_s;
+    j["sensor_range_m"] = sensor_range_m;
     nlohmann::json rows = nlohmann::json::array();
     for (const Run& r : runs) {
       nlohmann::json row{{"tiles", r.tiles},   {"subdivision", r.subdivision},
@@ -303,6 +312,10 @@ void register_bench_scale_command(CLI::App& bench) {
   cmd->add_option("--max-sim-time", o->max_sim_time_s, "Per run [s of simulated time]")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option("--sensor-range", o->sensor_range_m,
+                  "Every run's sensor range [m] (default: a tenth of the untiled map's larger "
+                  "side, the range `auto` gives it)")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--real-time", o->real_time, "Real time at time scale 1 instead of lockstep");
   cmd->add_option("--out", o->out_dir, "Directory for every run's report, log and cycle trace")
       ->capture_default_str();

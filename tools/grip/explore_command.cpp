@@ -466,6 +466,7 @@ void add_common_options(CLI::App* cmd, ExploreOptions& o) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   add_vehicle_options(*cmd, o.params);
+  add_sensor_option(*cmd, o.params);
   cmd->add_option("--seed", o.seed, "Planner seed")->capture_default_str();
   cmd->add_option("--time-scale", o.time_scale, "Simulated seconds per wall-clock second")
       ->capture_default_str();

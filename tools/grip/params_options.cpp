@@ -38,6 +38,12 @@ void add_lockstep_options(CLI::App& command, ParamsOptions& o) {
                    "The paper's ablation: plans are not checked for a safe braking maneuver");
 }
 
+void add_sensor_option(CLI::App& command, ParamsOptions& o) {
+  command.add_option("--sensor-range", o.sensor_range_m,
+                     "The range sensor's reach [m] (sensor.range_m; default: the parameters', "
+                     "whose auto is a tenth of the map's larger side)");
+}
+
 void add_cycle_options(CLI::App& command, ParamsOptions& o) {
   command.add_option("--period-ms", o.period_ms, "Cycle T in vehicle time [ms] (planner.cycle_s)");
   command.add_option("--budget-ms", o.budget_ms,
@@ -96,6 +102,7 @@ std::string where_set(const ParamsOptions& o, const std::string& message) {
       {"planner.lockstep_edges", o.lockstep_edges.has_value(), "--lockstep-edges"},
       {"link.liveliness_lease_s", o.lease_ms.has_value(), "--lease-ms"},
       {"link.topic_prefix", o.topic_prefix.has_value(), "--topic-prefix"},
+      {"sensor.range_m", o.sensor_range_m.has_value(), "--sensor-range"},
   };
   for (const Override& override : overrides) {
     if (override.given && message.starts_with(override.key)) {
@@ -120,6 +127,7 @@ Result<params::GripParams> effective_params(const ParamsOptions& o) {
   if (o.lockstep_edges) p->planner.lockstep_edges = *o.lockstep_edges;
   if (o.no_safety) p->planner.safety = false;
   if (o.lease_ms) p->link.liveliness_lease_s = *o.lease_ms / 1e3;
+  if (o.sensor_range_m) p->sensor.range_m = *o.sensor_range_m;
   if (o.policy) {
     auto policy = platform::parse_policy_request(*o.policy);
     if (!policy) return policy.error();

@@ -33,6 +33,7 @@ struct ParamsOptions {
   std::optional<std::uint32_t> lockstep_edges;
   std::optional<std::string> policy;
   std::optional<double> lease_ms;
+  std::optional<double> sensor_range_m;
   bool no_safety = false;
 };
 
@@ -44,6 +45,9 @@ void add_domain_option(CLI::App& command, ParamsOptions& o);
 void add_security_option(CLI::App& command, ParamsOptions& o);
 // --lockstep-edges and --no-safety.
 void add_lockstep_options(CLI::App& command, ParamsOptions& o);
+// --sensor-range: the range sensor's reach (sensor.range_m), which also sets the path weight's
+// d_max unless the parameters give exploration.sensing_radius_m.
+void add_sensor_option(CLI::App& command, ParamsOptions& o);
 // --period-ms, --budget-ms, --margin-ms, --max-edges, --policy and --lease-ms.
 void add_cycle_options(CLI::App& command, ParamsOptions& o);
 

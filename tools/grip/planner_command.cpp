@@ -251,6 +251,7 @@ void register_planner_command(CLI::App& app) {
       "Run the planner as a DDS participant (vehicle computer): state, map and goal in, "
       "plans and status out");
   add_vehicle_options(*cmd, o->params);
+  add_sensor_option(*cmd, o->params);
   add_domain_option(*cmd, o->params);
   add_dds_config_option(*cmd, o->dds_config);
   add_security_option(*cmd, o->params);

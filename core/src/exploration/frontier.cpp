@@ -236,6 +236,7 @@ void FrontierMap::detect(const OccupancyGrid& grid, const CellBox& box) noexcept
   const auto x0 = static_cast<std::uint32_t>(std::max(box.x0, 0));
   const auto x1 = static_cast<std::uint32_t>(std::min(box.x1, width_ - 1));
   for (std::uint32_t y = y0; y <= y1 && x0 <= x1; ++y) {
+    bool any = false;
     for (std::uint32_t x = x0; x <= x1; ++x) {
       const std::uint32_t i = y * w + x;
       const bool frontier =
@@ -244,15 +245,22 @@ void FrontierMap::detect(const OccupancyGrid& grid, const CellBox& box) noexcept
       const std::uint64_t bit = std::uint64_t{1} << (i & 63U);
       frontier_bits_[i >> 6] =
           frontier ? frontier_bits_[i >> 6] | bit : frontier_bits_[i >> 6] & ~bit;
+      any = any || frontier;
     }
+    if (any) frontier_rows_.add(CellBox{0, static_cast<int>(y), 0, static_cast<int>(y)});
   }
 }
 
 void FrontierMap::group(const OccupancyGrid& grid) noexcept {
   const auto w = static_cast<std::uint32_t>(width_);
-  // Calls f(cell) for every frontier cell in index order: a word of bits at a time.
-  const auto for_each_frontier_cell = [this](auto&& f) {
-    for (std::size_t word = 0; word < frontier_bits_.size(); ++word) {
+  // Calls f(cell) for every frontier cell in index order: a word of bits at a time, over the
+  // rows that have held one (a map grows around the vehicle: not the whole of a large one).
+  const std::size_t first_word =
+      frontier_rows_.empty() ? 0 : static_cast<std::size_t>(frontier_rows_.y0) * w / 64;
+  const std::size_t end_word =
+      frontier_rows_.empty() ? 0 : (static_cast<std::size_t>(frontier_rows_.y1) + 1) * w / 64 + 1;
+  const auto for_each_frontier_cell = [&](auto&& f) {
+    for (std::size_t word = first_word; word < end_word; ++word) {
       for (std::uint64_t bits = frontier_bits_[word]; bits != 0; bits &= bits - 1) {
         f(static_cast<std::uint32_t>(word * 64 + static_cast<std::size_t>(std::countr_zero(bits))));
       }

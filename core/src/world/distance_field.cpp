@@ -201,12 +201,13 @@ std::uint32_t DistanceField::compute(const OccupancyGrid& grid, const ClearanceM
 
 std::uint32_t DistanceField::propagate(std::span<const std::uint32_t> target_cells) noexcept {
   // Only what the last wavefront labelled is not kInf: every cell it labelled was settled (it
-  // ran until the queue was empty), so their index range bounds them.
-  if (reached_first_ <= reached_last_) {
-    std::fill(field_.cost.begin() + reached_first_, field_.cost.begin() + reached_last_ + 1, kInf);
+  // ran until the queue was empty), so the box of the settled cells bounds them. A box, not an
+  // index range: on a wide map the rows a wavefront spans hold many times the cells it reached.
+  for (std::uint32_t row = reached_.y0; row <= reached_.y1 && reached_.x0 <= reached_.x1; ++row) {
+    const auto first = field_.cost.begin() + row * padded_width_;
+    std::fill(first + reached_.x0, first + reached_.x1 + 1, kInf);
   }
-  reached_first_ = kNil;
-  reached_last_ = 0;
+  reached_ = ReachedBox{};
   std::fill(std::begin(field_.head), std::end(field_.head), kNil);
   std::uint32_t queued = 0;
   for (const std::uint32_t target : target_cells) {
@@ -228,8 +229,12 @@ std::uint32_t DistanceField::propagate(std::span<const std::uint32_t> target_cel
                      field_.head, PlainLabels{field_.cost.data()}, queued,
                      [&](std::uint32_t p, std::uint32_t) {
                        ++settled;
-                       reached_first_ = std::min(reached_first_, p);
-                       reached_last_ = std::max(reached_last_, p);
+                       const std::uint32_t row = p / padded_width_;
+                       const std::uint32_t column = p - row * padded_width_;
+                       reached_.x0 = std::min(reached_.x0, column);
+                       reached_.x1 = std::max(reached_.x1, column);
+                       reached_.y0 = std::min(reached_.y0, row);
+                       reached_.y1 = std::max(reached_.y1, row);
                        return false;
                      });
   return settled;

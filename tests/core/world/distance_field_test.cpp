@@ -200,6 +200,37 @@ TEST(DistanceFieldTest, OneFieldReusedThroughMapChangesEqualsAFreshOneEveryTime)
   }
 }
 
+TEST(DistanceFieldTest, WavefrontsInSeparateRoomsLeaveNoLabelsBehind) {
+  // Walls cut a wide grid into 4 x 2 closed rooms, so each wavefront labels one room (a box
+  // of a few columns across many rows of the grid): the next one, from a target in another
+  // room, must read exactly as a fresh field's, with nothing left of the rooms before.
+  OccupancyGrid grid = make_grid(81, 31, 0.1);
+  for (int y = 0; y < 31; ++y) {
+    for (int x = 0; x < 81; x += 20) grid.set(x, y, Cell::kObstacle);
+  }
+  for (int x = 0; x < 81; ++x) {
+    grid.set(x, 0, Cell::kObstacle);
+    grid.set(x, 15, Cell::kObstacle);
+    grid.set(x, 30, Cell::kObstacle);
+  }
+  Random random(29);
+  DistanceField field = make_field(grid);
+  field.prepare(grid);
+  for (int round = 0; round < 30; ++round) {
+    const int room_x = static_cast<int>(random.below(4));
+    const int room_y = static_cast<int>(random.below(2));
+    const std::vector<std::uint32_t> targets = {
+        grid.index(room_x * 20 + 1 + static_cast<int>(random.below(19)),
+                   room_y * 15 + 1 + static_cast<int>(random.below(14)))};
+    const std::uint32_t reached = field.propagate(targets);
+    EXPECT_EQ(reached, 19U * 14U) << "round " << round;
+    const std::vector<std::uint32_t> expected = reference_costs(grid, free_cells(grid), targets);
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      ASSERT_EQ(field.cost_at(i), expected[i]) << "round " << round << " cell " << i;
+    }
+  }
+}
+
 TEST(DistanceFieldTest, StraightAndDiagonalRunsCostSeventyAndNinetyNinePerCell) {
   const OccupancyGrid grid = make_grid(20, 20, 0.1);
   DistanceField field = make_field(grid);

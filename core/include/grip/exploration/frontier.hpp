@@ -197,6 +197,7 @@ class FrontierMap {
   std::vector<Offset> window_;                // the approach disk, nearest offsets first
   std::vector<std::uint64_t> frontier_bits_;  // per cell: a frontier cell (row-major bits)
   bool detected_ = false;                     // frontier_bits_ hold the last update's grid
+  CellBox frontier_rows_;                     // rows that have held a frontier cell (x unused)
   BoundedVector<std::uint32_t> label_;        // per frontier cell: kUnlabelled or its group
   BoundedVector<std::uint32_t> cells_;        // frontier cells, grouped (the flood fill's queue)
   BoundedVector<FrontierGroup> groups_;

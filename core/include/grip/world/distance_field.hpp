@@ -12,8 +12,8 @@
 // cell otherwise.
 //
 // Queue: Dial's algorithm, a cyclic bucket queue of 100 buckets (> the largest edge cost)
-// threaded through per-cell next/prev arrays; O(cells reached) per wavefront, plus the index
-// range the previous one reached (cleared). The traversable set is rebuilt in O(cells), or
+// threaded through per-cell next/prev arrays; O(cells reached) per wavefront, plus the
+// box the previous one reached (cleared). The traversable set is rebuilt in O(cells), or
 // within the window of a change (the windowed prepare()). All buffers are allocated
 // by create(); compute() and the lookups never allocate and never throw.
 
@@ -139,8 +139,14 @@ class DistanceField {
   std::vector<std::uint8_t> traversable_;       // padded
   const OccupancyGrid* mask_source_ = nullptr;  // traversable_ built from it, whole first
   std::uint32_t tag_ = 0;
-  std::uint32_t reached_first_ = kNil;  // padded index range the last wavefront labelled
-  std::uint32_t reached_last_ = 0;
+  // The padded columns and rows the last wavefront labelled (empty: x0 > x1).
+  struct ReachedBox {
+    std::uint32_t x0 = kNil;
+    std::uint32_t x1 = 0;
+    std::uint32_t y0 = kNil;
+    std::uint32_t y1 = 0;
+  };
+  ReachedBox reached_;
   Search field_;  // the wavefront's labels are the field
 };
 
