@@ -6,6 +6,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <climits>
 #include <cstdlib>
 #include <string>
 
@@ -63,6 +64,15 @@ void prefer_huge_pages(char** argv) noexcept {
     if (!mode || mode.value().find("[never]") != std::string::npos) return;
     const std::string after = (before.empty() ? "" : before + ":") + kHugePages + "=1";
     if (::setenv(kTunables, after.c_str(), 1) != 0) return;
+    // By its path, so that the process keeps its name (ps, top, pgrep and systemd show the
+    // file's name, which /proc/self/exe would make "exe"); by /proc/self/exe when the file has
+    // gone since (replaced by an upgrade).
+    char self[PATH_MAX];
+    const ssize_t length = ::readlink("/proc/self/exe", self, sizeof self - 1);
+    if (length > 0) {
+      self[length] = '\0';
+      ::execv(self, argv);
+    }
     ::execv("/proc/self/exe", argv);
     // Still here: go on as started, with the environment as it was.
     if (set != nullptr) {

@@ -197,8 +197,8 @@ TEST(HugePages, TheProcessStartsAgainOnceAsItWasWithGlibcAskedForHugePages) {
       EXPECT_EQ(probe.tunables, before);
       continue;
     }
-    // THEN it started again once, the same process with the same arguments, the tunable added
-    // to the others, and a large block it writes lies in huge pages
+    // THEN it started again once, the same process with the same name and arguments, the tunable
+    // added to the others, and a large block it writes lies in huge pages
     ASSERT_EQ(probe.started.size(), 2U);
     EXPECT_EQ(probe.started[1], probe.started[0]);
     EXPECT_EQ(probe.tunables,

@@ -1,8 +1,8 @@
 // `grip bench scale` explores one map made larger for real (here: the small room, and 2 x 2 of
 // it side by side, at 10 cells a metre, then the room at 20, briefly, in lockstep): a row per
-// map with its cell count, the planner's start-up, memory and every cycle phase, and the chart
-// of their p99 against the cell count where tools/grip/scale_chart.hpp's layout puts them; and
-// bad options are refused.
+// map with its cell count, the planner's start-up, memory and every cycle phase, one sensor
+// range for all of them, and the chart of their p99 against the cell count where
+// tools/grip/scale_chart.hpp's layout puts them; and bad options are refused.
 
 #include <gtest/gtest.h>
 
@@ -101,7 +101,13 @@ TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
   std::string header;
   for (std::string line; header.size() < 40 && std::getline(tiled, line);) header += line + "|";
   EXPECT_EQ(header.rfind("type octile|height 20|width 20|map|", 0), 0U) << header;
+  // One sensor for every size: the range `auto` gives the 10 m room, not the 20 m tiling's.
+  EXPECT_EQ(j.at("sensor_range_m").get<double>(), 1.0);
   for (const auto& run : {j.at("runs")[0], j.at("runs")[1], j_fine.at("runs")[0]}) {
+    std::ifstream report_in(run.at("report").get<std::string>());
+    const nlohmann::json report = nlohmann::json::parse(report_in);
+    EXPECT_NE(report.at("parameters").get<std::string>().find("\n  range_m: 1 "), std::string::npos)
+        << report.at("parameters").get<std::string>();
     EXPECT_EQ(run.at("collisions").get<int>(), 0) << run.dump();
     EXPECT_EQ(run.at("cycles").get<int>(), 201) << run.dump();  // 10 s at 0.05 s, and the first
     const auto& startup = run.at("planner_startup");

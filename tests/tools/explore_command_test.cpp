@@ -397,6 +397,11 @@ TEST(ExploreCommand, BadMapsAndOptionsAreRefusedNamingWhatIsWrong) {
   r = run("explore --time-scale 0");
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("--time-scale"), std::string::npos) << r.output;
+
+  r = run("explore --sensor-range -1");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("sensor.range_m must be finite and >= 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(set by --sensor-range)"), std::string::npos) << r.output;
 }
 
 }  // namespace

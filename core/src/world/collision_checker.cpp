@@ -101,26 +101,30 @@ CollisionChecker::CollisionChecker(const OccupancyGrid& grid, const Footprint& f
   words_per_row_ = (width_ + 63) / 64;
   blocked_bits_.assign(static_cast<std::size_t>(words_per_row_) * height_, 0);
   fast_free_bits_.assign(static_cast<std::size_t>(words_per_row_) * height_, 0);
-  rebuild_bits(0, static_cast<int>(height_) - 1);
+  rebuild_bits(whole());
 }
 
 void CollisionChecker::refresh() noexcept {
   clearance_.compute(*grid_);
-  rebuild_bits(0, static_cast<int>(height_) - 1);
+  rebuild_bits(whole());
 }
 
 void CollisionChecker::refresh(const CellBox& changed) noexcept {
   const CellBox rewritten = clearance_.update(*grid_, changed, exact_d2_);
-  if (!rewritten.empty()) rebuild_bits(rewritten.y0, rewritten.y1);
+  if (!rewritten.empty()) rebuild_bits(rewritten);
 }
 
-void CollisionChecker::rebuild_bits(int y0, int y1) noexcept {
+// The words covering the box's columns, whole: a word's bits outside the box are rebuilt from
+// cells that did not change, to what they were.
+void CollisionChecker::rebuild_bits(const CellBox& box) noexcept {
   const std::span<const Cell> cells = grid_->cells();
   const std::span<const std::uint32_t> d2 = clearance_.squared_cells();
-  for (auto y = static_cast<std::uint32_t>(y0); y <= static_cast<std::uint32_t>(y1); ++y) {
+  const auto k0 = static_cast<std::uint32_t>(box.x0) / 64;
+  const auto k1 = static_cast<std::uint32_t>(box.x1) / 64;
+  for (auto y = static_cast<std::uint32_t>(box.y0); y <= static_cast<std::uint32_t>(box.y1); ++y) {
     std::uint64_t* blocked = blocked_bits_.data() + static_cast<std::size_t>(y) * words_per_row_;
     std::uint64_t* fast = fast_free_bits_.data() + static_cast<std::size_t>(y) * words_per_row_;
-    for (std::uint32_t k = 0; k < words_per_row_; ++k) {
+    for (std::uint32_t k = k0; k <= k1; ++k) {
       std::uint64_t blocked_word = 0;
       std::uint64_t fast_word = 0;
       for (std::uint32_t bit = 0; bit < 64; ++bit) {

@@ -359,12 +359,13 @@ TEST(CollisionCheckerTest, RefreshPicksUpGridChanges) {
 TEST(CollisionCheckerTest, ARefreshNearTheChangeAnswersAsACheckerBuiltAfresh) {
   // GIVEN a checker whose clearance is also shared up to 0.4 m, on a grid changed box by box
   Random random(31);
-  OccupancyGrid grid = make_grid(70, 50, 0.1);
+  // (wide: a row holds several 64-cell words of the checker's bit grids, most outside a change)
+  OccupancyGrid grid = make_grid(300, 50, 0.1);
   auto created = CollisionChecker::create(grid, kRobot, 0.02, 0.4);
   ASSERT_TRUE(created.ok());
   CollisionChecker checker = std::move(created).value();
   for (int step = 0; step < 12; ++step) {
-    const int x0 = static_cast<int>(random.below(64));
+    const int x0 = static_cast<int>(random.below(294));
     const int y0 = static_cast<int>(random.below(44));
     const CellBox changed{x0, y0, x0 + 5, y0 + 5};
     for (int y = changed.y0; y <= changed.y1; ++y) {
@@ -387,6 +388,16 @@ TEST(CollisionCheckerTest, ARefreshNearTheChangeAnswersAsACheckerBuiltAfresh) {
           << "step " << step << " pose " << x << ", " << y << ", " << theta;
       ASSERT_EQ(checker.fast_path_free(x, y), fresh.fast_path_free(x, y))
           << "step " << step << " at " << x << ", " << y;
+    }
+    for (int cy = 0; cy < grid.height(); ++cy) {
+      for (int cx = 0; cx < grid.width(); ++cx) {
+        const double x = grid.cell_center_x(cx);
+        const double y = grid.cell_center_y(cy);
+        ASSERT_EQ(checker.is_free(x, y, 0.3), fresh.is_free(x, y, 0.3))
+            << "step " << step << " cell " << cx << ", " << cy;
+        ASSERT_EQ(checker.fast_path_free(x, y), fresh.fast_path_free(x, y))
+            << "step " << step << " cell " << cx << ", " << cy;
+      }
     }
     const std::uint32_t at_least = checker.clearance().squared_cells_at_least(0.4);
     ASSERT_LE(at_least, checker.clearance().exact_up_to());

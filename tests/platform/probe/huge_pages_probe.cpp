@@ -1,4 +1,4 @@
-// A helper program for the huge pages test: says who it is before and after
+// A helper program for the huge pages test: says who it is (pid, name) before and after
 // prefer_huge_pages(), which may start it again, then what glibc was told and whether a large
 // allocation it writes is backed by huge pages.
 
@@ -13,7 +13,10 @@
 #include "grip/platform/memory.hpp"
 
 int main(int argc, char** argv) {
-  std::cout << "GRIP_PROBE started pid=" << getpid() << " argument=" << (argc > 1 ? argv[1] : "")
+  std::string name;
+  std::getline(std::ifstream("/proc/self/comm"), name);
+  std::cout << "GRIP_PROBE started pid=" << getpid() << " name=" << name
+            << " argument=" << (argc > 1 ? argv[1] : "")
             << std::endl;  // flushed: an exec would drop what is buffered
   grip::platform::prefer_huge_pages(argv);
   const char* tunables = std::getenv("GLIBC_TUNABLES");

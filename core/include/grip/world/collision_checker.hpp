@@ -104,7 +104,10 @@ class CollisionChecker {
   const OccupancyGrid* grid_;
   Footprint footprint_;
   double margin_m_;
-  void rebuild_bits(int y0, int y1) noexcept;  // rows y0..y1
+  void rebuild_bits(const CellBox& box) noexcept;  // the cells of box, inside the grid
+  CellBox whole() const noexcept {
+    return CellBox{0, 0, static_cast<int>(width_) - 1, static_cast<int>(height_) - 1};
+  }
   // Second tier: the grown rectangle is covered by disks along its axis; if the clearance map
   // clears every disk the answer is "free", else the exact test decides.
   bool covering_disks_or_exact(double x_m, double y_m, double theta_rad,
