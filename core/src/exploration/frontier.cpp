@@ -62,6 +62,9 @@ Status FrontierConfig::validate(double resolution_m) const {
   if (!(std::isfinite(give_up_radius_m) && give_up_radius_m >= 0.0)) {
     return bad("give_up_radius_m", give_up_radius_m, "finite and >= 0");
   }
+  if (!(std::isfinite(search_step_m) && search_step_m >= 0.0)) {
+    return bad("search_step_m", search_step_m, "finite and >= 0");
+  }
   if (min_group_cells == 0) return bad("min_group_cells", 0.0, ">= 1");
   return Ok{};
 }
@@ -190,33 +193,7 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
   }
   group(grid);
   seed_robot_field(grid, robot_cx, robot_cy);
-  field_.propagate(seeds_.span());
-
-  // The target: the least score; ties go to the group found first (lowest cell index).
-  double best = std::numeric_limits<double>::infinity();
-  given_up_groups_ = 0;
-  unreachable_groups_ = 0;
-  for (std::uint32_t g = 0; g < groups_.size(); ++g) {
-    FrontierGroup& group = groups_[g];
-    measure_group(grid, group);
-    if (!group.reachable() || group.size < config_.min_group_cells) continue;
-    const auto cells = group_cells(g);
-    if (std::all_of(cells.begin(), cells.end(),
-                    [&](std::uint32_t c) { return given_up_[c] != 0; })) {
-      ++given_up_groups_;
-      continue;
-    }
-    if (!reached.passed.empty() && !reached_by(grid, group, reached)) {
-      ++unreachable_groups_;
-      continue;
-    }
-    const double size_m = group.size * resolution_;
-    group.score_m = group.rho_m + config_.size_weight * std::min(size_m, config_.size_cap_m);
-    if (group.score_m < best) {
-      best = group.score_m;
-      target_ = g;
-    }
-  }
+  choose_target(grid, reached);
   if (target_ == kNoGroup) {
     status_ = ExplorationStatus::kComplete;
     return status_;
@@ -224,6 +201,55 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
   collect_approach_cells(grid, groups_[target_]);
   status_ = ExplorationStatus::kTarget;
   return status_;
+}
+
+std::uint32_t FrontierMap::search_step_cost() const noexcept {
+  if (config_.search_step_m == 0.0) return kUnreachable;
+  const double cells = config_.search_step_m / resolution_;
+  return saturating_cast<std::uint32_t>(std::ceil(cells * DistanceField::kCostUnitsPerCell));
+}
+
+void FrontierMap::choose_target(const OccupancyGrid& grid,
+                                const KinematicReachability& reached) noexcept {
+  // The robot's wavefront in steps of search_step_m. After each, a group is measured when the
+  // cells settled so far decide its rho (any cell not settled yet costs more than the step's
+  // limit), and the choice is made once no group left unmeasured could beat the best score (its
+  // rho, and so its score, exceeds the limit). The least score wins, ties the lowest index:
+  // what one wavefront over all the known space would choose.
+  field_.start(seeds_.span());
+  given_up_groups_ = 0;
+  unreachable_groups_ = 0;
+  for (FrontierGroup& group : groups_) group = FrontierGroup{group.first, group.size};
+  const std::uint32_t step = search_step_cost();
+  const double metres_per_unit = resolution_ / DistanceField::kCostUnitsPerCell;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::uint32_t limit = step;; limit = limit > kUnreachable / 2 ? kUnreachable : 2 * limit) {
+    const bool complete = field_.settle(limit);
+    const std::uint32_t settled = field_.settled_limit();
+    for (std::uint32_t g = 0; g < groups_.size(); ++g) {
+      FrontierGroup& group = groups_[g];
+      if (group.searched || !measure_group(grid, group, settled)) continue;
+      group.searched = true;
+      if (!group.reachable() || group.size < config_.min_group_cells) continue;
+      const auto cells = group_cells(g);
+      if (std::all_of(cells.begin(), cells.end(),
+                      [&](std::uint32_t c) { return given_up_[c] != 0; })) {
+        ++given_up_groups_;
+        continue;
+      }
+      if (!reached.passed.empty() && !reached_by(grid, group, reached)) {
+        ++unreachable_groups_;
+        continue;
+      }
+      const double size_m = group.size * resolution_;
+      group.score_m = group.rho_m + config_.size_weight * std::min(size_m, config_.size_cap_m);
+      if (group.score_m < best || (group.score_m == best && g < target_)) {
+        best = group.score_m;
+        target_ = g;
+      }
+    }
+    if (complete || best <= settled * metres_per_unit) return;
+  }
 }
 
 void FrontierMap::detect(const OccupancyGrid& grid, const CellBox& box) noexcept {
@@ -325,24 +351,33 @@ void FrontierMap::seed_robot_field(const OccupancyGrid& grid, int robot_cx, int 
   }
 }
 
-void FrontierMap::measure_group(const OccupancyGrid& grid, FrontierGroup& group) noexcept {
-  // Per cell: the cheapest chassis cell in its window, in sight. Candidates that cannot improve
-  // on the best so far skip the sight test, which is the only costly part.
+bool FrontierMap::measure_group(const OccupancyGrid& grid, FrontierGroup& group,
+                                std::uint32_t settled) noexcept {
+  // Per cell: the cheapest chassis cell in its window, in sight, among the cells settled.
+  // Candidates that cannot improve on the best so far skip the sight test, which is the only
+  // costly part.
   const auto w = static_cast<std::uint32_t>(width_);
   std::uint32_t best = kUnreachable;
+  std::uint32_t nearest = FrontierGroup::kNoCell;
   for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
     const std::uint32_t c = cells_[i];
     const int cx = static_cast<int>(c % w);
     const int cy = static_cast<int>(c / w);
-    for_each_approach(grid, cx, cy, [&](std::uint32_t, int x, int y, std::uint32_t cost) {
-      if (cost >= best || !detail::in_sight(grid, x, y, cx, cy)) return;
+    for_each_approach(grid, cx, cy, [&](std::uint32_t a, int x, int y, std::uint32_t cost) {
+      if (cost >= best || field_.cost_at(a) > settled || !detail::in_sight(grid, x, y, cx, cy)) {
+        return;
+      }
       best = cost;
-      group.nearest_cell = c;
+      nearest = c;
     });
   }
+  // Decided when no cell beyond the settled ones could give less: they cost more than `settled`
+  // (or there are none: the wavefront has run to the end).
+  if (settled != kUnreachable && best > settled) return false;
   group.rho_m = best == kUnreachable ? std::numeric_limits<double>::infinity()
                                      : best * (resolution_ / DistanceField::kCostUnitsPerCell);
-  group.score_m = std::numeric_limits<double>::infinity();
+  group.nearest_cell = nearest;
+  return true;
 }
 
 bool FrontierMap::reached_by(const OccupancyGrid& grid, const FrontierGroup& group,
@@ -375,17 +410,34 @@ void FrontierMap::collect_approach_cells(const OccupancyGrid& grid,
     std::fill(stamp_.begin(), stamp_.end(), 0U);
     generation_ = 1;
   }
+  // The window cells in sight that the wavefront reached, or may still reach (traversable, not
+  // labelled yet: it stopped at the target's score).
   const auto w = static_cast<std::uint32_t>(width_);
   for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
     const std::uint32_t c = cells_[i];
     const int cx = static_cast<int>(c % w);
     const int cy = static_cast<int>(c / w);
-    for_each_approach(grid, cx, cy, [&](std::uint32_t a, int x, int y, std::uint32_t) {
-      if (stamp_[a] == generation_ || !detail::in_sight(grid, x, y, cx, cy)) return;
+    for (const Offset& o : window_) {
+      const int x = cx + o.dx;
+      const int y = cy + o.dy;
+      if (!grid.in_bounds(x, y)) continue;
+      const std::uint32_t a = grid.index(x, y);
+      if (stamp_[a] == generation_ || (!field_.reachable(a) && !field_.traversable(a)) ||
+          !detail::in_sight(grid, x, y, cx, cy)) {
+        continue;
+      }
       stamp_[a] = generation_;
       GRIP_ASSERT(approach_.push_back(a));  // each cell once: at most the grid
-    });
+    }
   }
+  // On until each is labelled (a label, final or not, means reached) or the wavefront ends.
+  const auto unlabelled = [this](std::uint32_t a) { return !field_.reachable(a); };
+  std::uint32_t limit = std::max(field_.settled_limit(), search_step_cost());
+  while (std::any_of(approach_.begin(), approach_.end(), unlabelled) && !field_.settle(limit)) {
+    limit = limit > kUnreachable / 2 ? kUnreachable : 2 * limit;
+  }
+  approach_.truncate(static_cast<std::size_t>(
+      std::remove_if(approach_.begin(), approach_.end(), unlabelled) - approach_.begin()));
 }
 
 }  // namespace grip

@@ -11,20 +11,15 @@ namespace {
 
 constexpr std::uint32_t kInf = DistanceField::kUnreachable;
 
-// Labels of the field: a plain array, kInf meaning "not reached".
-struct PlainLabels {
-  std::uint32_t* cost;
-  std::uint32_t get(std::uint32_t p) const noexcept { return cost[p]; }
-  void set(std::uint32_t p, std::uint32_t c) const noexcept { cost[p] = c; }
-};
-
-// Dial's algorithm over the padded grid. The queue holds `queued` seeds at cost 0 (already
-// labelled and linked into bucket 0). on_settle(p, cost) is called for each settled cell in
-// nondecreasing cost; returning true stops the search.
-template <std::uint32_t kBuckets, typename Labels, typename OnSettle>
-void run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::uint32_t* next,
-              std::uint32_t* prev, std::uint32_t* head, Labels labels, std::uint32_t queued,
-              OnSettle&& on_settle) noexcept {
+// Dial's algorithm over the padded grid, resumable: `queue` holds the cells labelled and not yet
+// settled (the seeds at first, linked into bucket 0) and where the scan of the buckets stands.
+// Settles every cell of cost <= cost_limit, calling on_settle(p) for each in nondecreasing cost;
+// returns true when the queue ran empty (every label final), false when it stopped at the limit
+// (the next cell to settle costs more; labels above the limit are upper bounds).
+template <std::uint32_t kBuckets, typename OnSettle>
+bool run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::uint32_t* cost_of,
+              std::uint32_t* next, std::uint32_t* prev, std::uint32_t* head,
+              detail::DialQueue& queue, std::uint32_t cost_limit, OnSettle&& on_settle) noexcept {
   constexpr std::uint32_t kNil = DistanceField::kNoCell;
   const auto link = [&](std::uint32_t p, std::uint32_t bucket) {
     const std::uint32_t first = head[bucket];
@@ -45,26 +40,32 @@ void run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
       prev[next[p]] = prev[p];
     }
   };
+  std::uint32_t queued = queue.queued;
   const auto relax = [&](std::uint32_t p, std::uint32_t cost) {
-    const std::uint32_t old = labels.get(p);
+    const std::uint32_t old = cost_of[p];
     if (cost < old) {
       if (old != kInf) {
         unlink(p, old % kBuckets);
       } else {
         ++queued;
       }
-      labels.set(p, cost);
+      cost_of[p] = cost;
       link(p, cost % kBuckets);
     }
   };
 
   const std::uint32_t w = padded_width;
-  std::uint32_t cost = 0;
-  std::uint32_t bucket = 0;
+  std::uint32_t cost = queue.cost;
+  std::uint32_t bucket = queue.bucket;
+  bool stopped = false;
   while (queued > 0) {
     while (head[bucket] == kNil) {
       ++cost;
       bucket = bucket + 1 == kBuckets ? 0 : bucket + 1;
+    }
+    if (cost > cost_limit) {
+      stopped = true;
+      break;
     }
     const std::uint32_t u = head[bucket];
     head[bucket] = next[u];
@@ -72,9 +73,7 @@ void run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
       prev[next[u]] = kNil;
     }
     --queued;
-    if (on_settle(u, cost)) {
-      return;
-    }
+    on_settle(u);
     const std::uint32_t straight = cost + DistanceField::kOrthogonalCost;
     const std::uint32_t diagonal = cost + DistanceField::kDiagonalCost;
     const bool east = traversable[u + 1] != 0;
@@ -91,6 +90,10 @@ void run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
     if (south && east && traversable[u - w + 1] != 0) relax(u - w + 1, diagonal);
     if (south && west && traversable[u - w - 1] != 0) relax(u - w - 1, diagonal);
   }
+  queue.queued = queued;
+  queue.cost = cost;
+  queue.bucket = bucket;
+  return !stopped;
 }
 
 }  // namespace
@@ -200,16 +203,26 @@ std::uint32_t DistanceField::compute(const OccupancyGrid& grid, const ClearanceM
 }
 
 std::uint32_t DistanceField::propagate(std::span<const std::uint32_t> target_cells) noexcept {
-  // Only what the last wavefront labelled is not kInf: every cell it labelled was settled (it
-  // ran until the queue was empty), so the box of the settled cells bounds them. A box, not an
-  // index range: on a wide map the rows a wavefront spans hold many times the cells it reached.
-  for (std::uint32_t row = reached_.y0; row <= reached_.y1 && reached_.x0 <= reached_.x1; ++row) {
-    const auto first = field_.cost.begin() + row * padded_width_;
-    std::fill(first + reached_.x0, first + reached_.x1 + 1, kInf);
+  start(target_cells);
+  settle(kUnreachable);
+  return settled_;
+}
+
+void DistanceField::start(std::span<const std::uint32_t> target_cells) noexcept {
+  // Only what the last wavefront labelled is not kInf: the cells it settled, and those it left
+  // queued beside them. The box of the settled cells grown by one bounds them (inside the
+  // padding ring: a real cell's neighbours). A box, not an index range: on a wide map the rows a
+  // wavefront spans hold many times the cells it reached.
+  if (reached_.x0 <= reached_.x1) {
+    for (std::uint32_t row = reached_.y0 - 1; row <= reached_.y1 + 1; ++row) {
+      const auto first = field_.cost.begin() + row * padded_width_;
+      std::fill(first + reached_.x0 - 1, first + reached_.x1 + 2, kInf);
+    }
   }
   reached_ = ReachedBox{};
+  settled_ = 0;
   std::fill(std::begin(field_.head), std::end(field_.head), kNil);
-  std::uint32_t queued = 0;
+  field_.queue = detail::DialQueue{};
   for (const std::uint32_t target : target_cells) {
     GRIP_ASSERT(target < cell_count());
     const std::uint32_t p = padded(target);
@@ -221,23 +234,33 @@ std::uint32_t DistanceField::propagate(std::span<const std::uint32_t> target_cel
         field_.prev[field_.head[0]] = p;
       }
       field_.head[0] = p;
-      ++queued;
+      ++field_.queue.queued;
+      note_reached(p);
     }
   }
-  std::uint32_t settled = 0;
-  run_dial<kBuckets>(traversable_.data(), padded_width_, field_.next.data(), field_.prev.data(),
-                     field_.head, PlainLabels{field_.cost.data()}, queued,
-                     [&](std::uint32_t p, std::uint32_t) {
-                       ++settled;
-                       const std::uint32_t row = p / padded_width_;
-                       const std::uint32_t column = p - row * padded_width_;
-                       reached_.x0 = std::min(reached_.x0, column);
-                       reached_.x1 = std::max(reached_.x1, column);
-                       reached_.y0 = std::min(reached_.y0, row);
-                       reached_.y1 = std::max(reached_.y1, row);
-                       return false;
-                     });
-  return settled;
+  // The seeds' labels (0) are final at once; with none, everything is.
+  settled_limit_ = field_.queue.queued == 0 ? kUnreachable : 0;
+}
+
+bool DistanceField::settle(std::uint32_t cost_limit) noexcept {
+  if (settled_limit_ == kUnreachable) return true;
+  const bool complete = run_dial<kBuckets>(traversable_.data(), padded_width_, field_.cost.data(),
+                                           field_.next.data(), field_.prev.data(), field_.head,
+                                           field_.queue, cost_limit, [&](std::uint32_t p) {
+                                             ++settled_;
+                                             note_reached(p);
+                                           });
+  settled_limit_ = complete ? kUnreachable : std::max(settled_limit_, cost_limit);
+  return complete;
+}
+
+void DistanceField::note_reached(std::uint32_t padded_index) noexcept {
+  const std::uint32_t row = padded_index / padded_width_;
+  const std::uint32_t column = padded_index - row * padded_width_;
+  reached_.x0 = std::min(reached_.x0, column);
+  reached_.x1 = std::max(reached_.x1, column);
+  reached_.y0 = std::min(reached_.y0, row);
+  reached_.y1 = std::max(reached_.y1, row);
 }
 
 std::uint32_t DistanceField::cost_at(std::uint32_t cell_index) const noexcept {

@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
+
+#include "grip/common/random.hpp"
 
 namespace grip {
 namespace {
@@ -245,6 +248,99 @@ TEST_F(FrontierTest, ARobotOutsideTheGridHasNoTarget) {
   EXPECT_EQ(frontiers->target(), FrontierMap::kNoGroup);
 }
 
+// A random known space: free with obstacle and unknown blocks, inside an unknown border.
+OccupancyGrid random_known_space(Random& random) {
+  OccupancyGrid grid = OccupancyGrid::create(120, 80, 0.1, 0.0, 0.0, Cell::kUnknown).value();
+  grid.fill_rect(0.3, 0.3, 11.7, 7.7, Cell::kFree);
+  for (int block = 0; block < 24; ++block) {
+    const double x = random.uniform(0.0, 11.0);
+    const double y = random.uniform(0.0, 7.0);
+    const double w = random.uniform(0.1, 1.5);
+    const double h = random.uniform(0.1, 1.5);
+    grid.fill_rect(x, y, x + w, y + h, random.below(2) == 0 ? Cell::kObstacle : Cell::kUnknown);
+  }
+  return grid;
+}
+
+TEST(FrontierSearch, AWavefrontInStepsChoosesWhatOneOverAllTheKnownSpaceChooses) {
+  // GIVEN random known spaces and robots, and frontier maps whose robot wavefront runs in
+  // steps of 0.2 m, 0.7 m and the default length, beside one that runs over everything at once
+  // (scored by distance alone, and with the size term)
+  Random random(41);
+  int targets = 0;
+  int completes = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const OccupancyGrid grid = random_known_space(random);
+    const ClearanceMap clearance = ClearanceMap::create_for(grid).value();
+    double x = 0.0;
+    double y = 0.0;
+    do {
+      x = random.uniform(0.5, 11.5);
+      y = random.uniform(0.5, 7.5);
+    } while (grid.at(static_cast<int>(x * 10), static_cast<int>(y * 10)) != Cell::kFree);
+    std::vector<FrontierMap> maps;
+    const double size_weight = trial % 2 == 0 ? 0.0 : FrontierConfig{}.size_weight;
+    for (const double step : {0.0, 0.2, 0.7, FrontierConfig{}.search_step_m}) {
+      FrontierConfig config;
+      config.search_step_m = step;
+      config.size_weight = size_weight;
+      maps.push_back(FrontierMap::create(120, 80, 0.1, config).value());
+    }
+    // WHEN each chooses, then again after giving up what the exact one chose, three times
+    for (int round = 0; round < 3; ++round) {
+      for (FrontierMap& map : maps) map.update(grid, clearance, x, y);
+      const FrontierMap& exact = maps[0];
+      // THEN every one chooses the same group, with the same rho and approach cells
+      for (std::size_t m = 1; m < maps.size(); ++m) {
+        const FrontierMap& stepped = maps[m];
+        ASSERT_EQ(stepped.status(), exact.status()) << "trial " << trial << " round " << round;
+        ASSERT_EQ(stepped.target(), exact.target()) << "trial " << trial << " round " << round;
+        ASSERT_TRUE(std::ranges::equal(stepped.approach_cells(), exact.approach_cells()))
+            << "trial " << trial << " round " << round;
+        if (exact.status() == ExplorationStatus::kTarget) {
+          const FrontierGroup& a = stepped.groups()[stepped.target()];
+          const FrontierGroup& b = exact.groups()[exact.target()];
+          EXPECT_EQ(a.rho_m, b.rho_m);
+          EXPECT_EQ(a.nearest_cell, b.nearest_cell);
+        } else {
+          EXPECT_EQ(stepped.given_up_groups(), exact.given_up_groups());
+        }
+      }
+      if (exact.status() != ExplorationStatus::kTarget) {
+        ++completes;
+        break;
+      }
+      ++targets;
+      const std::uint32_t chosen = exact.target();
+      for (FrontierMap& map : maps) map.give_up(chosen);
+    }
+  }
+  EXPECT_GT(targets, 300);  // the maps gave both outcomes, many times
+  EXPECT_GT(completes, 5);
+}
+
+TEST(FrontierSearch, ANearTargetLeavesTheFarKnownSpaceUnsearched) {
+  // GIVEN a 40 m x 40 m known hall and an unknown pocket 2 m from the robot
+  OccupancyGrid grid = OccupancyGrid::create(400, 400, 0.1, 0.0, 0.0, Cell::kObstacle).value();
+  grid.fill_rect(0.3, 0.3, 39.7, 39.7, Cell::kFree);
+  grid.fill_rect(4.0, 3.0, 4.5, 3.5, Cell::kUnknown);
+  const ClearanceMap clearance = ClearanceMap::create_for(grid).value();
+  FrontierMap stepped = FrontierMap::create(400, 400, 0.1, FrontierConfig{}).value();
+  // WHEN it chooses
+  ASSERT_EQ(stepped.update(grid, clearance, 2.0, 3.0), ExplorationStatus::kTarget);
+  // THEN the pocket is the target and the wavefront stopped short of the far corner
+  EXPECT_LT(stepped.groups()[stepped.target()].rho_m, 2.5);
+  EXPECT_NE(stepped.robot_field().settled_limit(), DistanceField::kUnreachable);
+  EXPECT_FALSE(stepped.robot_field().reachable(grid.index(350, 350)));
+  // where one wavefront over everything goes
+  FrontierConfig config;
+  config.search_step_m = 0.0;
+  FrontierMap exact = FrontierMap::create(400, 400, 0.1, config).value();
+  ASSERT_EQ(exact.update(grid, clearance, 2.0, 3.0), ExplorationStatus::kTarget);
+  EXPECT_TRUE(exact.robot_field().reachable(grid.index(350, 350)));
+  EXPECT_TRUE(std::ranges::equal(stepped.approach_cells(), exact.approach_cells()));
+}
+
 TEST(FrontierConfigTest, BadValuesAreRefusedByName) {
   FrontierConfig config;
   config.approach_range_m = 0.3;  // not beyond the clearance
@@ -262,6 +358,11 @@ TEST(FrontierConfigTest, BadValuesAreRefusedByName) {
   const auto nan_radius = FrontierMap::create(10, 10, 0.1, config);
   ASSERT_FALSE(nan_radius.ok());
   EXPECT_NE(nan_radius.error().message.find("give_up_radius_m"), std::string::npos);
+  config = FrontierConfig{};
+  config.search_step_m = -1.0;
+  const auto negative_step = FrontierMap::create(10, 10, 0.1, config);
+  ASSERT_FALSE(negative_step.ok());
+  EXPECT_NE(negative_step.error().message.find("search_step_m"), std::string::npos);
   EXPECT_FALSE(FrontierMap::create(0, 10, 0.1, FrontierConfig{}).ok());
 }
 

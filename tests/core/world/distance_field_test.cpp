@@ -231,6 +231,44 @@ TEST(DistanceFieldTest, WavefrontsInSeparateRoomsLeaveNoLabelsBehind) {
   }
 }
 
+TEST(DistanceFieldTest, AWavefrontInStepsSettlesExactlyTheCellsUpToEachLimit) {
+  // Each wavefront is run in steps, and left unfinished every other time: the next one, from
+  // other targets, must not read what the unfinished one left queued.
+  Random random(17);
+  OccupancyGrid grid = random_grid(random, 60, 40, 0.2);
+  DistanceField field = make_field(grid);
+  field.prepare(grid);
+  for (int round = 0; round < 20; ++round) {
+    const std::vector<std::uint32_t> targets = {random.below(grid.cell_count()),
+                                                random.below(grid.cell_count())};
+    const std::vector<std::uint32_t> expected = reference_costs(grid, free_cells(grid), targets);
+    field.start(targets);
+    EXPECT_EQ(field.settled_limit(), 0U);
+    const bool finish = round % 2 == 0;
+    for (const std::uint32_t limit : {0U, 69U, 70U, 350U, 1000U, 2500U}) {
+      if (!finish && limit > 350U) break;
+      const bool complete = field.settle(limit);
+      if (complete) break;
+      EXPECT_EQ(field.settled_limit(), limit);
+      for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+        if (expected[i] <= limit) {
+          ASSERT_EQ(field.cost_at(i), expected[i]) << "round " << round << " limit " << limit;
+        } else if (field.cost_at(i) != kInf) {
+          // Queued beyond the limit: reached, at most at its label.
+          ASSERT_GE(field.cost_at(i), expected[i]) << "round " << round << " cell " << i;
+          ASSERT_NE(expected[i], kInf) << "round " << round << " cell " << i;
+        }
+      }
+    }
+    if (!finish) continue;
+    EXPECT_TRUE(field.settle(kInf));
+    EXPECT_EQ(field.settled_limit(), kInf);
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      ASSERT_EQ(field.cost_at(i), expected[i]) << "round " << round << " cell " << i;
+    }
+  }
+}
+
 TEST(DistanceFieldTest, StraightAndDiagonalRunsCostSeventyAndNinetyNinePerCell) {
   const OccupancyGrid grid = make_grid(20, 20, 0.1);
   DistanceField field = make_field(grid);

@@ -65,13 +65,17 @@ struct FrontierConfig {
   // Groups with fewer cells are ignored (1: none is). Raise it to skip single unknown cells
   // a sensor may leave between its rays.
   std::uint32_t min_group_cells = 1;
+  // [m] The robot's wavefront runs in steps of this length (doubling), until no group beyond
+  // could beat the best one found: near targets cost the cells around the robot, not the whole
+  // known space. The choice is the same for every step; 0: one wavefront over all of it.
+  double search_step_m = 4.0;
   // [m] give_up() sets aside the frontier cells within this distance of a group's cells: the
   // group, and what it becomes while the map around it does not change, is no longer a target.
   double give_up_radius_m = 1.0;
 
   // Errors name the bad value: clearance_m < 0, approach_range_m not > clearance_m + one cell
-  // diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0 (or any of them not
-  // finite), min_group_cells 0.
+  // diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0, search_step_m < 0 (or any
+  // of them not finite), min_group_cells 0.
   Status validate(double resolution_m) const;
   bool operator==(const FrontierConfig&) const = default;
 };
@@ -93,6 +97,9 @@ struct FrontierGroup {
   double rho_m = std::numeric_limits<double>::infinity();    // +inf: not reachable
   std::uint32_t nearest_cell = kNoCell;                      // the cell that gives rho_m
   double score_m = std::numeric_limits<double>::infinity();  // see FrontierConfig; +inf: ignored
+  // Whether the robot's wavefront got far enough to measure it (rho_m, nearest_cell, score_m):
+  // it stops once no group beyond could beat the target (FrontierConfig::search_step_m).
+  bool searched = false;
   bool reachable() const noexcept { return rho_m < std::numeric_limits<double>::infinity(); }
 };
 
@@ -105,8 +112,9 @@ class FrontierMap {
   static Result<FrontierMap> create(int width_cells, int height_cells, double resolution_m,
                                     const FrontierConfig& config);
 
-  // Recomputes everything from the grid (a full pass: O(cells) for detection, grouping and the
-  // robot's wavefront, plus the approach windows of the frontier cells). `clearance` must be
+  // Recomputes everything from the grid (a full pass: O(cells) for detection and grouping, the
+  // robot's wavefront as far as the choice needs, plus the approach windows of the frontier
+  // cells). `clearance` must be
   // computed from this grid at its current revision (e.g. the planner's
   // CollisionChecker::clearance() after a refresh; asserted). The robot is the reference point
   // at (robot_x_m, robot_y_m). kTarget when a group was chosen, kComplete when no reachable
@@ -121,7 +129,8 @@ class FrontierMap {
                            const KinematicReachability& reached = {}) noexcept;
   // The same after `change` to the grid of the last update(): frontier cells are detected again
   // and the robot's traversable set rebuilt only where it changed; grouping scans the frontier
-  // cells (a bit per cell), and the wavefront what the robot reaches. Equal to a full update().
+  // cells (a bit per cell), and the wavefront goes as far as the choice needs
+  // (FrontierConfig::search_step_m). Equal to a full update().
   struct MapChange {
     CellBox written;  // every cell written since the last update()
     // Where traversability can have changed: ClearanceMap::update's window (which holds every
@@ -140,10 +149,11 @@ class FrontierMap {
   void give_up(std::uint32_t group) noexcept;
   // Takes every group given up back (ExplorationTarget retries them once nothing else is left).
   void forgive_all() noexcept;
-  // Reachable groups of the last update passed over because they were given up.
+  // Reachable groups of the last update passed over because they were given up (of those
+  // searched: all of them when no target was left).
   std::uint32_t given_up_groups() const noexcept { return given_up_groups_; }
-  // Groups of the last update the chassis' clearance reaches but the vehicle's kinematics does
-  // not (see update()'s `reached`), and not given up.
+  // Groups of the last update (searched) the chassis' clearance reaches but the vehicle's
+  // kinematics does not (see update()'s `reached`), and not given up.
   std::uint32_t unreachable_groups() const noexcept { return unreachable_groups_; }
   // Every frontier cell, grouped: group g's cells are contiguous (see FrontierGroup::first), in
   // flood-fill order from the group's lowest cell index.
@@ -158,7 +168,8 @@ class FrontierMap {
   // The cells from which the target group is approached (each once; empty without a
   // target): the planner's target set F, Planner::retain(root, Goal::cells(approach_cells()), T).
   std::span<const std::uint32_t> approach_cells() const noexcept { return approach_.span(); }
-  // The robot's wavefront of the last update (rho_A* from the robot, in the chassis' space).
+  // The robot's wavefront of the last update (rho_A* from the robot, in the chassis' space), as
+  // far as the search went (DistanceField::settled_limit()).
   const DistanceField& robot_field() const noexcept { return field_; }
   const FrontierConfig& config() const noexcept { return config_; }
 
@@ -182,7 +193,12 @@ class FrontierMap {
     return ((frontier_bits_[c >> 6] >> (c & 63U)) & 1U) != 0;
   }
   void seed_robot_field(const OccupancyGrid& grid, int robot_cx, int robot_cy) noexcept;
-  void measure_group(const OccupancyGrid& grid, FrontierGroup& group) noexcept;
+  std::uint32_t search_step_cost() const noexcept;
+  void choose_target(const OccupancyGrid& grid, const KinematicReachability& reached) noexcept;
+  // Sets the group's rho_m and nearest_cell from the cells the robot's wavefront has settled up
+  // to cost `settled`; false (nothing set) when cells beyond could still give a smaller rho.
+  bool measure_group(const OccupancyGrid& grid, FrontierGroup& group,
+                     std::uint32_t settled) noexcept;
   void collect_approach_cells(const OccupancyGrid& grid, const FrontierGroup& group) noexcept;
   // Calls visit(cell, x, y, cost via it) for every chassis cell the wavefront reached within the
   // approach window of (cx, cy); the caller tests sight (only when the cost could matter).

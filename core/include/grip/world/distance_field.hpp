@@ -28,6 +28,16 @@
 
 namespace grip {
 
+namespace detail {
+// Where a resumable Dial search stands (distance_field.cpp): the cells queued, and the cost and
+// bucket its scan of the buckets has reached.
+struct DialQueue {
+  std::uint32_t queued = 0;
+  std::uint32_t cost = 0;
+  std::uint32_t bucket = 0;
+};
+}  // namespace detail
+
 class DistanceField {
  public:
   static constexpr std::uint32_t kOrthogonalCost = 70;
@@ -64,7 +74,18 @@ class DistanceField {
   // set there only.
   void prepare(const OccupancyGrid& grid, const ClearanceMap& clearance, double inflation_m,
                const CellBox& window) noexcept;
+  // The wavefront, to the end; returns the number of cells it reached (targets included).
   std::uint32_t propagate(std::span<const std::uint32_t> target_cells) noexcept;
+  // The wavefront in steps, for a caller that needs only the cells up to some cost and does not
+  // know that cost in advance (FrontierMap: the frontier nearest by score): start() seeds it
+  // (the last one's labels cleared), settle(limit) runs it until every cell of cost <= limit is
+  // settled and may be called again with a larger limit to go on; true once it has run to the
+  // end. Labels up to settled_limit() are final; a cell labelled above it is reachable at most
+  // at that cost (it is queued), and a cell not labelled yet reads kUnreachable.
+  void start(std::span<const std::uint32_t> target_cells) noexcept;
+  bool settle(std::uint32_t cost_limit) noexcept;
+  // kUnreachable once the wavefront has run to the end (every label final).
+  std::uint32_t settled_limit() const noexcept { return settled_limit_; }
 
   // [m] path length from the cell containing (x_m, y_m) to the nearest target; +infinity when
   // unreachable, outside the grid or not finite. O(1).
@@ -117,12 +138,14 @@ class DistanceField {
     std::vector<std::uint32_t> next;
     std::vector<std::uint32_t> prev;
     std::uint32_t head[kBuckets];
+    detail::DialQueue queue;
   };
 
   DistanceField(int width_cells, int height_cells, double resolution_m);
   void build_mask(const OccupancyGrid& grid, const ClearanceMap* clearance, double inflation_m,
                   const CellBox& window) noexcept;
   CellBox whole() const noexcept { return CellBox{0, 0, width_ - 1, height_ - 1}; }
+  void note_reached(std::uint32_t padded_index) noexcept;
   std::uint32_t padded(std::uint32_t cell_index) const noexcept;
   std::uint32_t unpadded(std::uint32_t padded_index) const noexcept;
 
@@ -139,7 +162,8 @@ class DistanceField {
   std::vector<std::uint8_t> traversable_;       // padded
   const OccupancyGrid* mask_source_ = nullptr;  // traversable_ built from it, whole first
   std::uint32_t tag_ = 0;
-  // The padded columns and rows the last wavefront labelled (empty: x0 > x1).
+  // The padded columns and rows of the cells the last wavefront settled, and of its seeds
+  // (empty: x0 > x1).
   struct ReachedBox {
     std::uint32_t x0 = kNil;
     std::uint32_t x1 = 0;
@@ -147,6 +171,8 @@ class DistanceField {
     std::uint32_t y1 = 0;
   };
   ReachedBox reached_;
+  std::uint32_t settled_ = 0;  // cells the wavefront has settled
+  std::uint32_t settled_limit_ = kUnreachable;
   Search field_;  // the wavefront's labels are the field
 };
 
