@@ -5,9 +5,10 @@
 // weight), and when to set a group aside because the vehicle gets no closer to it.
 //
 // It works on its own copy of the map, so that a runtime can run it beside the planning thread
-// (the robot's and rho's wavefronts cover the known space: milliseconds on a large map) and
-// hand its result over, or inline where a run must be reproducible (lockstep). For the same
-// reason it also computes the planner's rho toward the approach cells (Planner::adopt_goal).
+// (rho's wavefront covers the known space, the robot's as far as the choice needs: milliseconds
+// on a large map) and hand its result over, or inline where a run must be reproducible
+// (lockstep). For the same reason it also computes the planner's rho toward the approach cells
+// (Planner::adopt_goal).
 // The copy, the clearance, the frontier cells and the traversable sets follow the map where it
 // was written, not over the whole map.
 //
