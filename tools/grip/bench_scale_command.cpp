@@ -1,12 +1,12 @@
 // `grip bench scale`: how grip's cost grows with the map. The same exploration (one vehicle,
-// one seed, a fixed simulated time) on one MovingAI map made larger, from about 0.4 M to 16 M
-// cells: tiled (n x n copies side by side: a larger building at the same resolution) and
-// subdivided (finer cells: the same building at a higher resolution). Every run has the same
-// sensor (its range in metres: what `auto` gives the untiled map), so that the map's size is
-// the only thing that changes; left to `auto` it would reach a tenth of the tiled map. Each run is
-// a private `grip explore` child process with its report and cycle trace kept in one directory. A
-// row per map: cells, the planner's start-up (map in sync, planning), the process's peak memory,
-// and every cycle phase's p50 / p99 / max, and (--png) their p99 against the cell count as a chart.
+// one seed, a fixed simulated time) on one MovingAI map made larger, up to about 16 M cells:
+// tiled (n x n copies side by side: a larger building at the same resolution) and subdivided
+// (finer cells: the same building at a higher resolution). Every run has the same sensor (its
+// range in metres: what `auto` gives the untiled map), so that the map's size is the only thing
+// that changes; left to `auto` it would reach a tenth of the tiled map. Each run is a private
+// `grip explore` child process with its report and cycle trace kept in one directory. A row per
+// map: cells, the planner's start-up (map in sync, planning), the process's peak memory, and
+// every cycle phase's p50 / p99 / max, and (--png) their p99 against the cell count as a chart.
 // A benchmark: it measures and prints, it asserts nothing.
 
 #include <algorithm>
@@ -24,6 +24,7 @@
 #include "bench_children.hpp"
 #include "commands.hpp"
 #include "grip/sim/map_file.hpp"
+#include "grip/sim/range_sensor.hpp"
 #include "report_file.hpp"
 #include "scale_chart.hpp"
 #include "stats.hpp"
@@ -193,8 +194,7 @@ int run_bench(const BenchScaleOptions& o) {
     return 2;
   }
   const double sensor_range_m =
-      o.sensor_range_m > 0.0 ? o.sensor_range_m
-                             : 0.1 * std::max(loaded->grid.width_m(), loaded->grid.height_m());
+      o.sensor_range_m > 0.0 ? o.sensor_range_m : sim::RangeSensor::default_radius_m(loaded->grid);
   const std::string stem = std::filesystem::path(o.map).stem().string();
   std::vector<Run> runs;
   for (const int n : o.tiles) {

@@ -25,6 +25,11 @@ constexpr std::array<NamedValue<ExplorationStatus>, 3> kExplorationStatusNames{{
 constexpr std::uint32_t kUnlabelled = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t kUnreachable = DistanceField::kUnreachable;
 
+// The next bound of a wavefront run in steps: twice the last, saturating at "to the end".
+std::uint32_t next_limit(std::uint32_t limit) {
+  return limit > kUnreachable / 2 ? kUnreachable : 2 * limit;
+}
+
 // The approach window's half side [cells], and the cells of a square of that half side.
 int approach_reach(const FrontierConfig& config, double resolution_m) {
   return floor_to_cell(config.approach_range_m / resolution_m, 0, OccupancyGrid::kMaxSideCells);
@@ -223,7 +228,7 @@ void FrontierMap::choose_target(const OccupancyGrid& grid,
   const std::uint32_t step = search_step_cost();
   const double metres_per_unit = resolution_ / DistanceField::kCostUnitsPerCell;
   double best = std::numeric_limits<double>::infinity();
-  for (std::uint32_t limit = step;; limit = limit > kUnreachable / 2 ? kUnreachable : 2 * limit) {
+  for (std::uint32_t limit = step;; limit = next_limit(limit)) {
     const bool complete = field_.settle(limit);
     const std::uint32_t settled = field_.settled_limit();
     for (std::uint32_t g = 0; g < groups_.size(); ++g) {
@@ -434,7 +439,7 @@ void FrontierMap::collect_approach_cells(const OccupancyGrid& grid,
   const auto unlabelled = [this](std::uint32_t a) { return !field_.reachable(a); };
   std::uint32_t limit = std::max(field_.settled_limit(), search_step_cost());
   while (std::any_of(approach_.begin(), approach_.end(), unlabelled) && !field_.settle(limit)) {
-    limit = limit > kUnreachable / 2 ? kUnreachable : 2 * limit;
+    limit = next_limit(limit);
   }
   approach_.truncate(static_cast<std::size_t>(
       std::remove_if(approach_.begin(), approach_.end(), unlabelled) - approach_.begin()));

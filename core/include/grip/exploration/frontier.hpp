@@ -114,10 +114,9 @@ class FrontierMap {
 
   // Recomputes everything from the grid (a full pass: O(cells) for detection and grouping, the
   // robot's wavefront as far as the choice needs, plus the approach windows of the frontier
-  // cells). `clearance` must be
-  // computed from this grid at its current revision (e.g. the planner's
-  // CollisionChecker::clearance() after a refresh; asserted). The robot is the reference point
-  // at (robot_x_m, robot_y_m). kTarget when a group was chosen, kComplete when no reachable
+  // cells). `clearance` must be computed from this grid at its current revision (e.g. the
+  // planner's CollisionChecker::clearance() after a refresh; asserted). The robot is the reference
+  // point at (robot_x_m, robot_y_m). kTarget when a group was chosen, kComplete when no reachable
   // frontier group remains, kRobotOutsideGrid (nothing computed, no target) when the position
   // is not in the grid.
   //
