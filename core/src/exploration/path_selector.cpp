@@ -40,19 +40,39 @@ Result<PathSelector> PathSelector::create(int width_cells, int height_cells, dou
   return PathSelector(width_cells, height_cells, resolution_m, max_edges, config);
 }
 
+namespace {
+
+// Map cells per side of a sight cell: the fewest that bring d_max within kMaxSightRadius.
+int sight_block_for(double sensing_radius_m, double resolution_m) {
+  return ceil_to_count(sensing_radius_m / resolution_m / PathSelector::kMaxSightRadius, 1,
+                       OccupancyGrid::kMaxSideCells);
+}
+
+std::size_t sight_cells(int width_cells, int height_cells, int block) {
+  return static_cast<std::size_t>((width_cells + block - 1) / block) *
+         static_cast<std::size_t>((height_cells + block - 1) / block);
+}
+
+}  // namespace
+
 PathSelector::PathSelector(int width_cells, int height_cells, double resolution_m,
                            std::uint32_t max_edges, const PathSelectionConfig& config)
     : width_(width_cells),
       height_(height_cells),
       resolution_(resolution_m),
+      block_(sight_block_for(config.sensing_radius_m, resolution_m)),
+      sight_width_((width_cells + block_ - 1) / block_),
+      sight_height_((height_cells + block_ - 1) / block_),
       max_edges_(max_edges),
       config_(config),
-      seen_(static_cast<std::size_t>(width_cells) * static_cast<std::size_t>(height_cells)),
+      seen_(sight_cells(width_cells, height_cells, block_)),
       seen_list_(seen_.capacity()),
+      blocked_(block_ > 1 ? seen_.capacity() : 0),
       d_(static_cast<std::size_t>(max_edges) * kMaxTargetCells),
       length_(max_edges),
       stack_(max_edges) {
   for (std::size_t c = 0; c < seen_.capacity(); ++c) GRIP_ASSERT(seen_.push_back(0));
+  for (std::size_t c = 0; c < blocked_.capacity(); ++c) GRIP_ASSERT(blocked_.push_back(0));
   for (std::size_t i = 0; i < d_.capacity(); ++i) GRIP_ASSERT(d_.push_back(0.0F));
   for (std::size_t e = 0; e < length_.capacity(); ++e) GRIP_ASSERT(length_.push_back(0.0));
 }
@@ -66,6 +86,11 @@ void PathSelector::set_target(const OccupancyGrid& grid,
   targets_.clear();
   origin_x_m_ = grid.origin_x();
   origin_y_m_ = grid.origin_y();
+  // What blocks the view is read afresh from this grid; a stamp that would wrap clears all.
+  if (++stamp_ > 0x7FFFFFFFU) {
+    std::fill(blocked_.begin(), blocked_.end(), 0U);
+    stamp_ = 1;
+  }
   // Evenly spread: the i-th of n picks sits at (2i + 1) / 2n along the list, so that both ends
   // of a short frontier are represented as well as its middle.
   const std::size_t n = std::min<std::size_t>(cells.size(), kMaxTargetCells);
@@ -79,11 +104,47 @@ void PathSelector::set_target(const OccupancyGrid& grid,
   }
 }
 
+std::uint32_t PathSelector::seen_from(std::uint32_t cell) const noexcept {
+  const auto width = static_cast<std::uint32_t>(width_);
+  const auto block = static_cast<std::uint32_t>(block_);
+  return seen_[(cell / width / block) * static_cast<std::uint32_t>(sight_width_) +
+               cell % width / block];
+}
+
+std::uint32_t PathSelector::sight_index(double u, double v) const noexcept {
+  const auto block = static_cast<std::uint32_t>(block_);
+  return static_cast<std::uint32_t>(v) / block * static_cast<std::uint32_t>(sight_width_) +
+         static_cast<std::uint32_t>(u) / block;
+}
+
+bool PathSelector::blocks_sight(const OccupancyGrid& grid, int sx, int sy) noexcept {
+  if (block_ == 1) return grid.at(sx, sy) != Cell::kFree;
+  if (sx < 0 || sy < 0 || sx >= sight_width_ || sy >= sight_height_) return true;
+  std::uint32_t& known =
+      blocked_[static_cast<std::size_t>(sy) * static_cast<std::size_t>(sight_width_) +
+               static_cast<std::size_t>(sx)];
+  if (known >> 1 == stamp_) return (known & 1U) != 0;
+  bool obstacle = false;
+  bool free = false;
+  const int x1 = std::min(width_, (sx + 1) * block_);
+  const int y1 = std::min(height_, (sy + 1) * block_);
+  for (int y = sy * block_; y < y1 && !obstacle; ++y) {
+    for (int x = sx * block_; x < x1; ++x) {
+      const Cell cell = grid.at(x, y);
+      obstacle = obstacle || cell == Cell::kObstacle;
+      free = free || cell == Cell::kFree;
+    }
+  }
+  const bool blocks = obstacle || !free;
+  known = (stamp_ << 1) | (blocks ? 1U : 0U);
+  return blocks;
+}
+
 void PathSelector::cast_rays_from(const OccupancyGrid& grid, std::uint32_t target_bit) noexcept {
   const std::uint32_t target = targets_[target_bit];
-  const int tx = grid.cell_x(target);
-  const int ty = grid.cell_y(target);
-  const double range_cells = config_.sensing_radius_m / resolution_;
+  const int tx = grid.cell_x(target) / block_;
+  const int ty = grid.cell_y(target) / block_;
+  const double range_cells = config_.sensing_radius_m / (resolution_ * block_);
   const double range2 = range_cells * range_cells;
   const int r = ceil_to_count(range_cells, 0, OccupancyGrid::kMaxSideCells);
   const std::uint32_t bit = 1U << target_bit;
@@ -91,8 +152,11 @@ void PathSelector::cast_rays_from(const OccupancyGrid& grid, std::uint32_t targe
     detail::trace_cells(tx, ty, px, py, [&](int x, int y) {
       const double dx = x - tx;
       const double dy = y - ty;
-      if (dx * dx + dy * dy > range2 || grid.at(x, y) != Cell::kFree) return false;
-      const std::uint32_t c = grid.index(x, y);
+      const bool start = x == tx && y == ty;
+      if (dx * dx + dy * dy > range2 || (!start && blocks_sight(grid, x, y))) return false;
+      const std::uint32_t c =
+          static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(sight_width_) +
+          static_cast<std::uint32_t>(x);
       if (seen_[c] == 0) GRIP_ASSERT(seen_list_.push_back(c));  // each cell once
       seen_[c] |= bit;
       return true;
@@ -134,8 +198,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
     const double u = (x - origin_x_m_) * inv_resolution;
     const double v = (y - origin_y_m_) * inv_resolution;
     if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) return;
-    std::uint32_t mask = seen_[static_cast<std::uint32_t>(v) * static_cast<std::uint32_t>(width_) +
-                               static_cast<std::uint32_t>(u)];
+    std::uint32_t mask = seen_[sight_index(u, v)];
     seen_any = seen_any || mask != 0;
     for (; mask != 0; mask &= mask - 1) {
       const auto i = static_cast<std::uint32_t>(std::countr_zero(mask));

@@ -273,6 +273,50 @@ TEST(PathSelectorFromAfar, SeeingAFewFrontierCellsStillMovesTowardThem) {
                          << end[0] << ", " << end[1] << ")";
 }
 
+// A map finer than d_max / kMaxSightRadius: sight is decided on blocks of map cells. 12 m x 6 m
+// at 2 cm, d_max 4 m (200 cells: blocks of 4), a wall at x = 6 m from the bottom to y = 4 m,
+// the target at (7, 1) right of it. Open space in range on the target's side is seen, the
+// wall's shadow is not, nor is anything beyond d_max.
+TEST(PathSelectorOnAFineMap, SightOnBlocksStopsAtWallsAndAtTheRange) {
+  const double res = 0.02;
+  OccupancyGrid grid = OccupancyGrid::create(600, 300, res, 0.0, 0.0, Cell::kObstacle).value();
+  grid.fill_rect(0.1, 0.1, 11.9, 5.9, Cell::kFree);
+  grid.fill_rect(5.95, 0.0, 6.05, 4.0, Cell::kObstacle);
+  PathSelectionConfig config;
+  config.sensing_radius_m = 4.0;
+  auto selector = PathSelector::create(600, 300, res, 100, config).value();
+  EXPECT_EQ(selector.sight_block(), 4);
+  int tx = 0;
+  int ty = 0;
+  ASSERT_TRUE(grid.to_cell(7.0, 1.0, tx, ty));
+  const std::uint32_t target[] = {grid.index(tx, ty)};
+  selector.set_target(grid, target);
+  int seen_open = 0;
+  int shadow = 0;
+  int beyond = 0;
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      const double cx = grid.cell_center_x(x);
+      const double cy = grid.cell_center_y(y);
+      const double d = std::hypot(cx - 7.0, cy - 1.0);
+      const bool seen = selector.seen_from(grid.index(x, y)) != 0;
+      if (cx > 6.4 && cx < 11.6 && cy > 0.4 && cy < 5.6 && d < 3.8) {
+        EXPECT_TRUE(seen) << "open cell (" << cx << ", " << cy << ") not seen";
+        seen_open += seen ? 1 : 0;
+      } else if (cx < 5.7 && cy < 3.5) {
+        EXPECT_FALSE(seen) << "cell (" << cx << ", " << cy << ") behind the wall seen";
+        ++shadow;
+      } else if (d > 4.2) {
+        EXPECT_FALSE(seen) << "cell (" << cx << ", " << cy << ") beyond d_max seen";
+        ++beyond;
+      }
+    }
+  }
+  EXPECT_GT(seen_open, 10'000);
+  EXPECT_GT(shadow, 10'000);
+  EXPECT_GT(beyond, 1'000);
+}
+
 TEST(PathSelectionConfigTest, BadValuesAreRefusedByName) {
   PathSelectionConfig config;
   config.sensing_radius_m = 0.0;
