@@ -227,13 +227,21 @@ void FrontierMap::choose_target(const OccupancyGrid& grid,
   for (FrontierGroup& group : groups_) group = FrontierGroup{group.first, group.size};
   const std::uint32_t step = search_step_cost();
   const double metres_per_unit = resolution_ / DistanceField::kCostUnitsPerCell;
+  const auto w = static_cast<std::uint32_t>(width_);
+  const int robot_cx = static_cast<int>(seeds_[0] % w);
+  const int robot_cy = static_cast<int>(seeds_[0] / w);
   double best = std::numeric_limits<double>::infinity();
   for (std::uint32_t limit = step;; limit = next_limit(limit)) {
     const bool complete = field_.settle(limit);
     const std::uint32_t settled = field_.settled_limit();
     for (std::uint32_t g = 0; g < groups_.size(); ++g) {
       FrontierGroup& group = groups_[g];
-      if (group.searched || !measure_group(grid, group, settled)) continue;
+      // A group the wavefront cannot have come near yet is not measured: measuring reads the
+      // whole approach window of each of its cells, and a group is pending for many steps.
+      if (group.searched || rho_lower_bound(group, robot_cx, robot_cy) > settled ||
+          !measure_group(grid, group, settled)) {
+        continue;
+      }
       group.searched = true;
       if (!group.reachable() || group.size < config_.min_group_cells) continue;
       const auto cells = group_cells(g);
@@ -354,6 +362,23 @@ void FrontierMap::seed_robot_field(const OccupancyGrid& grid, int robot_cx, int 
       GRIP_ASSERT(seeds_.push_back(c));  // at most the window's size, < cells
     }
   }
+}
+
+std::uint32_t FrontierMap::rho_lower_bound(const FrontierGroup& group, int robot_cx,
+                                           int robot_cy) const noexcept {
+  // A path's cost is at least 70 per cell of straight-line length (a diagonal step's 99 is more
+  // than 70 sqrt 2), and the window's cost rounds its straight line to the nearest unit.
+  const auto w = static_cast<std::uint32_t>(width_);
+  long nearest2 = std::numeric_limits<long>::max();
+  for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
+    const long dx = static_cast<long>(cells_[i] % w) - robot_cx;
+    const long dy = static_cast<long>(cells_[i] / w) - robot_cy;
+    nearest2 = std::min(nearest2, dx * dx + dy * dy);
+  }
+  const double straight = std::sqrt(static_cast<double>(nearest2)) -
+                          config_.approach_range_m / resolution_;  // a seed's offset at most
+  const double bound = straight * DistanceField::kCostUnitsPerCell - 2.0;
+  return bound <= 0.0 ? 0U : saturating_cast<std::uint32_t>(std::floor(bound));
 }
 
 bool FrontierMap::measure_group(const OccupancyGrid& grid, FrontierGroup& group,

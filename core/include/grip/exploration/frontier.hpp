@@ -194,6 +194,10 @@ class FrontierMap {
   void seed_robot_field(const OccupancyGrid& grid, int robot_cx, int robot_cy) noexcept;
   std::uint32_t search_step_cost() const noexcept;
   void choose_target(const OccupancyGrid& grid, const KinematicReachability& reached) noexcept;
+  // [cost units] A bound the group's rho cannot beat, from straight lines alone: every approach
+  // path starts at a seed, within the approach range of the robot's cell (robot_cx, robot_cy).
+  std::uint32_t rho_lower_bound(const FrontierGroup& group, int robot_cx,
+                                int robot_cy) const noexcept;
   // Sets the group's rho_m and nearest_cell from the cells the robot's wavefront has settled up
   // to cost `settled`; false (nothing set) when cells beyond could still give a smaller rho.
   bool measure_group(const OccupancyGrid& grid, FrontierGroup& group,
