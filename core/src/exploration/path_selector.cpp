@@ -48,11 +48,6 @@ int sight_block_for(double sensing_radius_m, double resolution_m) {
                        OccupancyGrid::kMaxSideCells);
 }
 
-std::size_t sight_cells(int width_cells, int height_cells, int block) {
-  return static_cast<std::size_t>((width_cells + block - 1) / block) *
-         static_cast<std::size_t>((height_cells + block - 1) / block);
-}
-
 }  // namespace
 
 PathSelector::PathSelector(int width_cells, int height_cells, double resolution_m,
@@ -65,7 +60,7 @@ PathSelector::PathSelector(int width_cells, int height_cells, double resolution_
       sight_height_((height_cells + block_ - 1) / block_),
       max_edges_(max_edges),
       config_(config),
-      seen_(sight_cells(width_cells, height_cells, block_)),
+      seen_(static_cast<std::size_t>(sight_width_) * static_cast<std::size_t>(sight_height_)),
       seen_list_(seen_.capacity()),
       blocked_(block_ > 1 ? seen_.capacity() : 0),
       d_(static_cast<std::size_t>(max_edges) * kMaxTargetCells),
@@ -106,15 +101,12 @@ void PathSelector::set_target(const OccupancyGrid& grid,
 
 std::uint32_t PathSelector::seen_from(std::uint32_t cell) const noexcept {
   const auto width = static_cast<std::uint32_t>(width_);
-  const auto block = static_cast<std::uint32_t>(block_);
-  return seen_[(cell / width / block) * static_cast<std::uint32_t>(sight_width_) +
-               cell % width / block];
+  return seen_[sight_cell(cell % width, cell / width)];
 }
 
-std::uint32_t PathSelector::sight_index(double u, double v) const noexcept {
+std::uint32_t PathSelector::sight_cell(std::uint32_t x, std::uint32_t y) const noexcept {
   const auto block = static_cast<std::uint32_t>(block_);
-  return static_cast<std::uint32_t>(v) / block * static_cast<std::uint32_t>(sight_width_) +
-         static_cast<std::uint32_t>(u) / block;
+  return y / block * static_cast<std::uint32_t>(sight_width_) + x / block;
 }
 
 bool PathSelector::blocks_sight(const OccupancyGrid& grid, int sx, int sy) noexcept {
@@ -198,7 +190,8 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
     const double u = (x - origin_x_m_) * inv_resolution;
     const double v = (y - origin_y_m_) * inv_resolution;
     if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) return;
-    std::uint32_t mask = seen_[sight_index(u, v)];
+    std::uint32_t mask =
+        seen_[sight_cell(static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(v))];
     seen_any = seen_any || mask != 0;
     for (; mask != 0; mask &= mask - 1) {
       const auto i = static_cast<std::uint32_t>(std::countr_zero(mask));

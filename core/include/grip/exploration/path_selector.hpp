@@ -34,10 +34,10 @@
 //    in sight cells, independent of the tree.
 //  - The sight grid is the map's grid while d_max spans at most kMaxSightRadius of its cells,
 //    else blocks of k x k map cells with k the smallest that brings d_max within it: the cost
-//    of a call stays that of a 10 cm map however fine the map is (at 2.5 cm it would be 16
-//    times more). A block blocks the view when one of its cells is an obstacle or none is free:
-//    a wall stops sight at the block it touches, half a block early at most, and a frontier's
-//    own block, half unknown, is seen through. The target's own block is always in sight.
+//    of a call is bounded however fine the map is. A block blocks the view when one of its
+//    cells is an obstacle or none is free: a wall stops sight at the block it touches, up to a
+//    block early, and a frontier's own block, part unknown, is seen through. The target's own
+//    block is always in sight.
 //  - Where q sees c, rho_A*(q, c) is the straight distance: the segment between them is free,
 //    so it is the shortest path.
 //  - d and l are taken over the states sampled every sample_step_s along each edge (and its
@@ -120,7 +120,8 @@ class PathSelector {
                const PathSelectionConfig& config);
   void cast_rays_from(const OccupancyGrid& grid, std::uint32_t target_bit) noexcept;
   bool blocks_sight(const OccupancyGrid& grid, int sx, int sy) noexcept;
-  std::uint32_t sight_index(double u, double v) const noexcept;
+  // The sight cell holding map cell (x, y).
+  std::uint32_t sight_cell(std::uint32_t x, std::uint32_t y) const noexcept;
 
   int width_;
   int height_;
@@ -128,7 +129,7 @@ class PathSelector {
   int block_;        // map cells per side of a sight cell
   int sight_width_;  // sight cells
   int sight_height_;
-  std::uint32_t stamp_ = 0;  // of the current set_target(), in blocked_ (twice, + 1 if blocked)
+  std::uint32_t stamp_ = 0;  // of the current set_target(); blocked_ holds stamp_ << 1 | blocks
   double origin_x_m_ = 0.0;  // of the grid given to set_target()
   double origin_y_m_ = 0.0;
   std::uint32_t max_edges_;
