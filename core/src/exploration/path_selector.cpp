@@ -106,15 +106,18 @@ std::uint32_t PathSelector::seen_from(std::uint32_t cell) const noexcept {
 
 std::uint32_t PathSelector::sight_cell(std::uint32_t x, std::uint32_t y) const noexcept {
   const auto block = static_cast<std::uint32_t>(block_);
-  return y / block * static_cast<std::uint32_t>(sight_width_) + x / block;
+  return sight_index(static_cast<int>(x / block), static_cast<int>(y / block));
+}
+
+std::uint32_t PathSelector::sight_index(int sx, int sy) const noexcept {
+  return static_cast<std::uint32_t>(sy) * static_cast<std::uint32_t>(sight_width_) +
+         static_cast<std::uint32_t>(sx);
 }
 
 bool PathSelector::blocks_sight(const OccupancyGrid& grid, int sx, int sy) noexcept {
   if (block_ == 1) return grid.at(sx, sy) != Cell::kFree;
   if (sx < 0 || sy < 0 || sx >= sight_width_ || sy >= sight_height_) return true;
-  std::uint32_t& known =
-      blocked_[static_cast<std::size_t>(sy) * static_cast<std::size_t>(sight_width_) +
-               static_cast<std::size_t>(sx)];
+  std::uint32_t& known = blocked_[sight_index(sx, sy)];
   if (known >> 1 == stamp_) return (known & 1U) != 0;
   bool obstacle = false;
   bool free = false;
@@ -146,9 +149,7 @@ void PathSelector::cast_rays_from(const OccupancyGrid& grid, std::uint32_t targe
       const double dy = y - ty;
       const bool start = x == tx && y == ty;
       if (dx * dx + dy * dy > range2 || (!start && blocks_sight(grid, x, y))) return false;
-      const std::uint32_t c =
-          static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(sight_width_) +
-          static_cast<std::uint32_t>(x);
+      const std::uint32_t c = sight_index(x, y);
       if (seen_[c] == 0) GRIP_ASSERT(seen_list_.push_back(c));  // each cell once
       seen_[c] |= bit;
       return true;

@@ -122,6 +122,8 @@ class PathSelector {
   bool blocks_sight(const OccupancyGrid& grid, int sx, int sy) noexcept;
   // The sight cell holding map cell (x, y).
   std::uint32_t sight_cell(std::uint32_t x, std::uint32_t y) const noexcept;
+  // The index of sight cell (sx, sy), inside the sight grid.
+  std::uint32_t sight_index(int sx, int sy) const noexcept;
 
   int width_;
   int height_;
