@@ -26,7 +26,9 @@ Result<Planner<V>> Planner<V>::create(const V& vehicle, const OccupancyGrid& gri
       grid, vehicle.footprint(), step_collision_margin_m(vehicle, config.integration_step_s),
       config.rho_clearance_m);
   if (!checker) return checker.error();
-  auto field = DistanceField::create(grid.width(), grid.height(), grid.resolution());
+  auto field = DistanceField::create(
+      grid.width(), grid.height(), grid.resolution(),
+      DistanceField::block_for(grid.resolution(), config.rho_cell_m, config.rho_clearance_m));
   if (!field) return field.error();
   auto baseline = BaselineSelection<V>::create(config, grid);
   if (!baseline) return baseline.error();
@@ -170,7 +172,7 @@ RetainStatus Planner<V>::set_target(const Goal& goal) noexcept {
 template <VehicleModel V>
 RetainStatus Planner<V>::adopt_goal(const Goal& goal, DistanceField& rho) noexcept {
   GRIP_ASSERT(rho.width() == grid_->width() && rho.height() == grid_->height() &&
-              rho.resolution() == grid_->resolution());
+              rho.resolution() == grid_->resolution() && rho.block() == rho_field_.block());
   if (goal.is_disk()) return RetainStatus::kGoalNotCells;
   if (const RetainStatus s = target_.assign(goal); s != RetainStatus::kOk) return s;
   std::swap(rho_field_, rho);

@@ -83,6 +83,10 @@ Status PlannerConfig::validate() const {
     return invalid_argument("planner.rho_clearance_m must be finite and >= 0 (got " +
                             std::to_string(rho_clearance_m) + ")");
   }
+  if (!std::isfinite(rho_cell_m) || rho_cell_m < 0.0) {
+    return invalid_argument("planner.rho_cell_m must be finite and >= 0 (got " +
+                            std::to_string(rho_cell_m) + ")");
+  }
   if (auto s = positive("rho_floor_m", rho_floor_m); !s) return s;
   if (!std::isfinite(braking_control_fraction) || braking_control_fraction < 0.0 ||
       braking_control_fraction > 1.0) {

@@ -1,6 +1,7 @@
 #include "grip/world/distance_field.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "validation.hpp"
@@ -16,8 +17,11 @@ constexpr std::uint32_t kInf = DistanceField::kUnreachable;
 // Settles every cell of cost <= cost_limit, calling on_settle(p) for each in nondecreasing cost;
 // returns true when the queue ran empty (every label final), false when it stopped at the limit
 // (the next cell to settle costs more; labels above the limit are upper bounds).
-template <std::uint32_t kBuckets, typename OnSettle>
-bool run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::uint32_t* cost_of,
+// Steps cost `orthogonal` and `diagonal`; the buckets are a power of two > diagonal, `bucket_mask`
+// one less.
+template <typename OnSettle>
+bool run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::uint32_t orthogonal,
+              std::uint32_t diagonal, std::uint32_t bucket_mask, std::uint32_t* cost_of,
               std::uint32_t* next, std::uint32_t* prev, std::uint32_t* head,
               detail::DialQueue& queue, std::uint32_t cost_limit, OnSettle&& on_settle) noexcept {
   constexpr std::uint32_t kNil = DistanceField::kNoCell;
@@ -45,12 +49,12 @@ bool run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
     const std::uint32_t old = cost_of[p];
     if (cost < old) {
       if (old != kInf) {
-        unlink(p, old % kBuckets);
+        unlink(p, old & bucket_mask);
       } else {
         ++queued;
       }
       cost_of[p] = cost;
-      link(p, cost % kBuckets);
+      link(p, cost & bucket_mask);
     }
   };
 
@@ -61,7 +65,7 @@ bool run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
   while (queued > 0) {
     while (head[bucket] == kNil) {
       ++cost;
-      bucket = bucket + 1 == kBuckets ? 0 : bucket + 1;
+      bucket = (bucket + 1) & bucket_mask;
     }
     if (cost > cost_limit) {
       stopped = true;
@@ -74,8 +78,8 @@ bool run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
     }
     --queued;
     on_settle(u);
-    const std::uint32_t straight = cost + DistanceField::kOrthogonalCost;
-    const std::uint32_t diagonal = cost + DistanceField::kDiagonalCost;
+    const std::uint32_t straight = cost + orthogonal;
+    const std::uint32_t slanted = cost + diagonal;
     const bool east = traversable[u + 1] != 0;
     const bool west = traversable[u - 1] != 0;
     const bool north = traversable[u + w] != 0;
@@ -85,10 +89,10 @@ bool run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
     if (north) relax(u + w, straight);
     if (south) relax(u - w, straight);
     // Diagonals only between two traversable orthogonal neighbours: no corner cutting.
-    if (north && east && traversable[u + w + 1] != 0) relax(u + w + 1, diagonal);
-    if (north && west && traversable[u + w - 1] != 0) relax(u + w - 1, diagonal);
-    if (south && east && traversable[u - w + 1] != 0) relax(u - w + 1, diagonal);
-    if (south && west && traversable[u - w - 1] != 0) relax(u - w - 1, diagonal);
+    if (north && east && traversable[u + w + 1] != 0) relax(u + w + 1, slanted);
+    if (north && west && traversable[u + w - 1] != 0) relax(u + w - 1, slanted);
+    if (south && east && traversable[u - w + 1] != 0) relax(u - w + 1, slanted);
+    if (south && west && traversable[u - w - 1] != 0) relax(u - w - 1, slanted);
   }
   queue.queued = queued;
   queue.cost = cost;
@@ -98,39 +102,66 @@ bool run_dial(const std::uint8_t* traversable, std::uint32_t padded_width, std::
 
 }  // namespace
 
-DistanceField::DistanceField(int width_cells, int height_cells, double resolution_m)
+DistanceField::DistanceField(int width_cells, int height_cells, double resolution_m, int block)
     : width_(width_cells),
       height_(height_cells),
       resolution_(resolution_m),
       inv_resolution_(1.0 / resolution_m),
       metres_per_unit_(resolution_m / kCostUnitsPerCell),
-      padded_width_(static_cast<std::uint32_t>(width_cells) + 2) {
+      block_(block),
+      orthogonal_cost_(kOrthogonalCost * static_cast<std::uint32_t>(block)),
+      diagonal_cost_(kDiagonalCost * static_cast<std::uint32_t>(block)),
+      padded_width_(static_cast<std::uint32_t>((width_cells + block - 1) / block) + 2) {
   const std::size_t padded_cells =
-      static_cast<std::size_t>(width_cells + 2) * static_cast<std::size_t>(height_cells + 2);
+      padded_width_ * (static_cast<std::size_t>((height_cells + block - 1) / block) + 2);
   traversable_.assign(padded_cells, 0);
   field_.cost.assign(padded_cells, kInf);
   field_.next.assign(padded_cells, kNil);
   field_.prev.assign(padded_cells, kNil);
-  std::fill(std::begin(field_.head), std::end(field_.head), kNil);
+  field_.head.assign(std::bit_ceil(diagonal_cost_ + 1), kNil);
 }
 
-Result<DistanceField> DistanceField::create(int width_cells, int height_cells,
-                                            double resolution_m) {
+Result<DistanceField> DistanceField::create(int width_cells, int height_cells, double resolution_m,
+                                            int block) {
   if (auto error =
           detail::check_grid_size("DistanceField", width_cells, height_cells, resolution_m)) {
     return *std::move(error);
   }
-  return DistanceField(width_cells, height_cells, resolution_m);
+  if (block < 1 || block > OccupancyGrid::kMaxSideCells) {
+    return invalid_argument("DistanceField: block must be in [1, " +
+                            std::to_string(OccupancyGrid::kMaxSideCells) + "] (got " +
+                            std::to_string(block) + ")");
+  }
+  return DistanceField(width_cells, height_cells, resolution_m, block);
+}
+
+int DistanceField::block_for(double resolution_m, double max_cell_m, double inflation_m) noexcept {
+  const double side_m = std::min(max_cell_m, 0.5 * inflation_m);
+  if (!(side_m > 0.0 && resolution_m > 0.0)) return 1;
+  // A hair of tolerance: 0.1 m on a 0.05 m grid is two cells, whatever the rounding.
+  const double cells = std::floor(side_m / resolution_m * (1.0 + 1e-9));
+  return cells >= 2.0 ? static_cast<int>(std::min(cells, 1024.0)) : 1;
+}
+
+std::uint32_t DistanceField::padded(std::uint32_t x, std::uint32_t y) const noexcept {
+  if (block_ != 1) {  // a division on every lookup only where there are blocks
+    x /= static_cast<std::uint32_t>(block_);
+    y /= static_cast<std::uint32_t>(block_);
+  }
+  return (y + 1) * padded_width_ + x + 1;
 }
 
 std::uint32_t DistanceField::padded(std::uint32_t cell_index) const noexcept {
   const auto w = static_cast<std::uint32_t>(width_);
-  return (cell_index / w + 1) * padded_width_ + cell_index % w + 1;
+  return padded(cell_index % w, cell_index / w);
 }
 
 std::uint32_t DistanceField::unpadded(std::uint32_t padded_index) const noexcept {
-  const std::uint32_t y = padded_index / padded_width_ - 1;
-  const std::uint32_t x = padded_index % padded_width_ - 1;
+  const auto b = static_cast<std::uint32_t>(block_);
+  const std::uint32_t x = std::min((padded_index % padded_width_ - 1) * b + b / 2,
+                                   static_cast<std::uint32_t>(width_) - 1);
+  const std::uint32_t y = std::min((padded_index / padded_width_ - 1) * b + b / 2,
+                                   static_cast<std::uint32_t>(height_) - 1);
   return y * static_cast<std::uint32_t>(width_) + x;
 }
 
@@ -144,16 +175,28 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
       clearance != nullptr ? clearance->squared_cells_at_least(inflation_m) : 0;
   // A clearance map updated in windows is exact only up to its bound (ClearanceMap::update).
   GRIP_ASSERT(clearance == nullptr || min_d2 <= clearance->exact_up_to());
-  const CellBox box{std::max(window.x0, 0), std::max(window.y0, 0), std::min(window.x1, width_ - 1),
-                    std::min(window.y1, height_ - 1)};
-  const auto w = static_cast<std::size_t>(width_);
+  const std::uint32_t* d2 = min_d2 == 0 ? nullptr : clearance->squared_cells().data();
+  const auto gw = static_cast<std::size_t>(width_);
+  const auto traversable = [&](std::size_t i) {
+    return cells[i] == Cell::kFree && (d2 == nullptr || d2[i] >= min_d2);
+  };
+  // The blocks that hold a cell of the window, each decided from all of its cells.
+  const int b = block_;
+  const CellBox box{std::max(window.x0, 0) / b, std::max(window.y0, 0) / b,
+                    std::min(window.x1, width_ - 1) / b, std::min(window.y1, height_ - 1) / b};
   for (int row = box.y0; row <= box.y1 && box.x0 <= box.x1; ++row) {
-    const auto y = static_cast<std::size_t>(row);
-    std::uint8_t* out = traversable_.data() + (y + 1) * padded_width_ + 1;
-    const Cell* in = cells.data() + y * w;
-    const std::uint32_t* d2 = min_d2 == 0 ? nullptr : clearance->squared_cells().data() + y * w;
-    for (auto x = static_cast<std::size_t>(box.x0); x <= static_cast<std::size_t>(box.x1); ++x) {
-      out[x] = (in[x] == Cell::kFree && (d2 == nullptr || d2[x] >= min_d2)) ? 1 : 0;
+    std::uint8_t* out = traversable_.data() + static_cast<std::size_t>(row + 1) * padded_width_ + 1;
+    const int y_end = std::min((row + 1) * b, height_);
+    for (int column = box.x0; column <= box.x1; ++column) {
+      const int x_end = std::min((column + 1) * b, width_);
+      bool any = false;
+      for (int y = row * b; y < y_end && !any; ++y) {
+        const std::size_t first = static_cast<std::size_t>(y) * gw;
+        for (int x = column * b; x < x_end && !any; ++x) {
+          any = traversable(first + static_cast<std::size_t>(x));
+        }
+      }
+      out[column] = any ? 1 : 0;
     }
   }
   mask_source_ = &grid;
@@ -221,7 +264,7 @@ void DistanceField::start(std::span<const std::uint32_t> target_cells) noexcept 
   }
   reached_ = ReachedBox{};
   settled_ = 0;
-  std::fill(std::begin(field_.head), std::end(field_.head), kNil);
+  std::fill(field_.head.begin(), field_.head.end(), kNil);
   field_.queue = detail::DialQueue{};
   for (const std::uint32_t target : target_cells) {
     GRIP_ASSERT(target < cell_count());
@@ -244,12 +287,13 @@ void DistanceField::start(std::span<const std::uint32_t> target_cells) noexcept 
 
 bool DistanceField::settle(std::uint32_t cost_limit) noexcept {
   if (settled_limit_ == kUnreachable) return true;
-  const bool complete = run_dial<kBuckets>(traversable_.data(), padded_width_, field_.cost.data(),
-                                           field_.next.data(), field_.prev.data(), field_.head,
-                                           field_.queue, cost_limit, [&](std::uint32_t p) {
-                                             ++settled_;
-                                             note_reached(p);
-                                           });
+  const bool complete = run_dial(
+      traversable_.data(), padded_width_, orthogonal_cost_, diagonal_cost_,
+      static_cast<std::uint32_t>(field_.head.size()) - 1, field_.cost.data(), field_.next.data(),
+      field_.prev.data(), field_.head.data(), field_.queue, cost_limit, [&](std::uint32_t p) {
+        ++settled_;
+        note_reached(p);
+      });
   settled_limit_ = complete ? kUnreachable : std::max(settled_limit_, cost_limit);
   return complete;
 }
@@ -292,22 +336,22 @@ double DistanceField::distance_m(double x_m, double y_m) const noexcept {
   if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) {
     return std::numeric_limits<double>::infinity();
   }
-  const std::uint32_t p =
-      (static_cast<std::uint32_t>(v) + 1) * padded_width_ + static_cast<std::uint32_t>(u) + 1;
-  const std::uint32_t cost = field_.cost[p];
+  const std::uint32_t cost =
+      field_.cost[padded(static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(v))];
   return cost == kInf ? std::numeric_limits<double>::infinity() : cost * metres_per_unit_;
 }
 
 std::uint32_t DistanceField::descend(std::uint32_t cell_index,
                                      std::uint32_t cost_drop) const noexcept {
-  std::uint32_t p = padded(cell_index);
+  const std::uint32_t from = padded(cell_index);
+  std::uint32_t p = from;
   const std::uint32_t start = field_.cost[p];
   if (start == kInf) return cell_index;
   const auto w = static_cast<std::int64_t>(padded_width_);
   const std::int64_t offsets[8] = {-1, 1, -w, w, -w - 1, -w + 1, w - 1, w + 1};
-  const std::uint32_t steps[8] = {kOrthogonalCost, kOrthogonalCost, kOrthogonalCost,
-                                  kOrthogonalCost, kDiagonalCost,   kDiagonalCost,
-                                  kDiagonalCost,   kDiagonalCost};
+  const std::uint32_t steps[8] = {orthogonal_cost_, orthogonal_cost_, orthogonal_cost_,
+                                  orthogonal_cost_, diagonal_cost_,   diagonal_cost_,
+                                  diagonal_cost_,   diagonal_cost_};
   // Every step lowers the cost (a neighbour on a shortest path costs the step less), and the
   // padding ring is never reached, so no bounds test is needed.
   while (field_.cost[p] != 0 && start - field_.cost[p] < cost_drop) {
@@ -324,7 +368,7 @@ std::uint32_t DistanceField::descend(std::uint32_t cell_index,
     if (best == p) break;
     p = best;
   }
-  return unpadded(p);
+  return p == from ? cell_index : unpadded(p);
 }
 
 }  // namespace grip

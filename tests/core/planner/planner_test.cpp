@@ -177,6 +177,29 @@ INSTANTIATE_TEST_SUITE_P(AllVehiclesAndPlanners, EndToEndSolveTest,
                            return name;
                          });
 
+// On a map finer than rho_cell_m, rho runs on blocks of its cells (half the clearance at most);
+// it still goes round the wall, and a car's turning rho reads it.
+TEST(RhoOnBlocks, AFineMapGetsRhoOnBlocksAndGripStillSolvesIt) {
+  const OccupancyGrid grid = test::room_with_wall(0.025);
+  const auto car = Car::create({}).value();
+  PlannerConfig config;
+  config.seed = 5;
+  config.max_edges = 60'000;
+  config.max_trajectories = 30'000;
+  auto planner = Planner<Car>::create(car, grid, config).value();
+  EXPECT_EQ(planner.rho_field().block(), 4);
+  const Goal goal = Goal::disk(9.5, 2.0, 1.0);
+  ASSERT_TRUE(planner.set_problem(car.rest_state(2.0, 2.0, 0.0), goal));
+  // Round the wall's top (y = 8), not through it.
+  EXPECT_GT(planner.rho_field().distance_m(2.0, 2.0), 2 * 6.0);
+  const auto result = planner.solve([] { return false; });
+  ASSERT_EQ(result.status, SolveStatus::kExactSolution) << stop_reason_name(result.reason);
+  test::expect_solution_replays_into_goal(planner, car.rest_state(2.0, 2.0, 0.0), goal);
+
+  config.rho_cell_m = 0.0;
+  EXPECT_EQ(Planner<Car>::create(car, grid, config).value().rho_field().block(), 1);
+}
+
 // A corridor 0.56 m wide for a car 0.4 m wide: too narrow for the chassis grown by the margin of
 // its top speed (half a step's motion at 3 m/s and full lock, 0.14 m a side), wide enough for
 // the margin of the speed it can have there. The planner checks each state with its own.
@@ -339,6 +362,9 @@ TEST(BadInput, InvalidConfigurationsAreRefusedWithTheParameterNamed) {
   c = PlannerConfig{};
   c.rho_clearance_m = -0.1;
   refused(c, "rho_clearance_m");
+  c = PlannerConfig{};
+  c.rho_cell_m = std::nan("");
+  refused(c, "rho_cell_m");
   c = PlannerConfig{};
   c.rrt_goal_bias = 1.5;
   refused(c, "rrt_goal_bias");

@@ -24,8 +24,8 @@ inline OccupancyGrid walled_room(double size_m, double resolution_m = 0.1) {
 
 // A 12 m room split by a wall from x = 6 up to y = 8, so the way from bottom-left to
 // bottom-right goes around its top end.
-inline OccupancyGrid room_with_wall() {
-  OccupancyGrid grid = walled_room(12.0);
+inline OccupancyGrid room_with_wall(double resolution_m = 0.1) {
+  OccupancyGrid grid = walled_room(12.0, resolution_m);
   grid.fill_rect(5.85, 0.0, 6.15, 8.0, Cell::kObstacle);
   return grid;
 }

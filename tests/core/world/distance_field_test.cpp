@@ -430,5 +430,168 @@ TEST(DistanceFieldDescendTest, FollowsAShortestPathAroundAWall) {
   EXPECT_EQ(field.descend(grid.index(10, 3), drop), grid.index(10, 3));
 }
 
+// Blocks (DistanceField's `block`): the field over blocks of b x b cells equals the plain field
+// over a grid of the blocks, a block traversable where one of its cells is.
+struct BlockGrid {
+  OccupancyGrid grid;  // of the blocks (its cells' values unused)
+  std::vector<bool> traversable;
+};
+
+BlockGrid block_grid(const OccupancyGrid& grid, const std::vector<bool>& traversable, int b) {
+  const int w = (grid.width() + b - 1) / b;
+  const int h = (grid.height() + b - 1) / b;
+  BlockGrid out{make_grid(w, h, grid.resolution() * b),
+                std::vector<bool>(static_cast<std::size_t>(w * h), false)};
+  for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+    if (traversable[i])
+      out.traversable[out.grid.index(grid.cell_x(i) / b, grid.cell_y(i) / b)] = true;
+  }
+  return out;
+}
+
+std::vector<bool> traversable_cells(const OccupancyGrid& grid, double inflation) {
+  const auto clearance = ClearanceMap::create_for(grid).value();
+  std::vector<bool> out(grid.cell_count());
+  for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+    out[i] = grid.at(i) == Cell::kFree && clearance.clearance_m(i) >= inflation;
+  }
+  return out;
+}
+
+TEST(DistanceFieldBlocksTest, CreateRejectsABlockBelowOneNamingIt) {
+  const auto bad = DistanceField::create(10, 10, 0.1, 0);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("block"), std::string::npos);
+}
+
+TEST(DistanceFieldBlocksTest, BlockForKeepsBlocksWithinTheCellSizeAndHalfTheInflation) {
+  EXPECT_EQ(DistanceField::block_for(0.1, 0.1, 0.3), 1);
+  EXPECT_EQ(DistanceField::block_for(0.05, 0.1, 0.3), 2);
+  EXPECT_EQ(DistanceField::block_for(0.025, 0.1, 0.3), 4);
+  EXPECT_EQ(DistanceField::block_for(1.0 / 64.0, 0.1, 0.3), 6);
+  EXPECT_EQ(DistanceField::block_for(0.02, 0.1, 0.1), 2);  // half the inflation: 0.05 m
+  EXPECT_EQ(DistanceField::block_for(0.02, 0.1, 0.0), 1);  // no inflation: walls a cell thick
+  EXPECT_EQ(DistanceField::block_for(0.02, 0.0, 0.3), 1);  // the map's own cells
+  EXPECT_EQ(DistanceField::block_for(0.2, 0.1, 0.3), 1);   // cells already that large
+}
+
+TEST(DistanceFieldBlocksTest, EqualsTheFieldOfTheBlockGridAndReachesEveryCellTheCellsReach) {
+  Random random(21);
+  for (int trial = 0; trial < 40; ++trial) {
+    SCOPED_TRACE(trial);
+    const int w = 1 + static_cast<int>(random.below(60));
+    const int h = 1 + static_cast<int>(random.below(60));
+    OccupancyGrid grid = random_grid(random, w, h, random.uniform(0.0, 0.05));
+    const int b = 1 + static_cast<int>(random.below(5));
+    const double inflation = random.uniform(0.0, 0.3);
+    const auto clearance = ClearanceMap::create_for(grid).value();
+    std::vector<std::uint32_t> targets;
+    for (std::uint32_t k = 0, n = 1 + random.below(3); k < n; ++k) {
+      targets.push_back(random.below(grid.cell_count()));
+    }
+    auto field = DistanceField::create(w, h, 0.1, b).value();
+    ASSERT_EQ(field.block(), b);
+    field.compute(grid, clearance, targets, inflation);
+
+    const std::vector<bool> cells = traversable_cells(grid, inflation);
+    const BlockGrid blocks = block_grid(grid, cells, b);
+    const auto block_of = [&](std::uint32_t i) {
+      return blocks.grid.index(grid.cell_x(i) / b, grid.cell_y(i) / b);
+    };
+    std::vector<std::uint32_t> block_targets;
+    for (const std::uint32_t t : targets) block_targets.push_back(block_of(t));
+    const std::vector<std::uint32_t> expected =
+        reference_costs(blocks.grid, blocks.traversable, block_targets);
+    // Every cell reads its block's label, in the grid's cost units (a block is b cells), and
+    // where the cells reach, so do the blocks.
+    auto plain = DistanceField::create(w, h, 0.1).value();
+    plain.compute(grid, clearance, targets, inflation);
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      const std::uint32_t e = expected[block_of(i)];
+      ASSERT_EQ(field.traversable(i), blocks.traversable[block_of(i)]) << "cell " << i;
+      ASSERT_EQ(field.cost_at(i), e == kInf ? kInf : e * static_cast<std::uint32_t>(b))
+          << "cell " << i;
+      const double x = grid.cell_center_x(grid.cell_x(i));
+      const double y = grid.cell_center_y(grid.cell_y(i));
+      ASSERT_EQ(field.cell_at(x, y), i);
+      ASSERT_EQ(field.distance_m(x, y), field.at(i));
+      if (plain.reachable(i)) {
+        ASSERT_TRUE(field.reachable(i)) << "cell " << i;
+      }
+    }
+  }
+}
+
+TEST(DistanceFieldBlocksTest, AFieldOnBlocksKeptThroughMapChangesEqualsAFreshOne) {
+  // The windowed prepare() rebuilds every block that holds a cell of the window.
+  Random random(34);
+  OccupancyGrid grid = random_grid(random, 41, 29, 0.03);
+  const double inflation = 0.2;
+  const int b = 3;
+  auto clearance = ClearanceMap::create_for(grid).value();
+  const std::uint32_t exact = clearance.squared_cells_at_least(inflation);
+  auto field = DistanceField::create(41, 29, 0.1, b).value();
+  field.prepare(grid, clearance, inflation);
+  for (int round = 0; round < 40; ++round) {
+    SCOPED_TRACE(round);
+    const int x0 = static_cast<int>(random.below(38));
+    const int y0 = static_cast<int>(random.below(26));
+    const Cell value = random.below(2) == 0 ? Cell::kFree : Cell::kObstacle;
+    CellBox changed;
+    for (int y = y0; y <= std::min(y0 + static_cast<int>(random.below(5)), 28); ++y) {
+      for (int x = x0; x <= std::min(x0 + static_cast<int>(random.below(5)), 40); ++x) {
+        if ((grid.at(grid.index(x, y)) == Cell::kFree) != (value == Cell::kFree)) {
+          changed.add(CellBox{x, y, x, y});
+        }
+        grid.set(x, y, value);
+      }
+    }
+    field.prepare(grid, clearance, inflation, clearance.update(grid, changed, exact));
+    const std::vector<std::uint32_t> targets = {random.below(grid.cell_count())};
+    field.propagate(targets);
+    auto fresh = DistanceField::create(41, 29, 0.1, b).value();
+    fresh.compute(grid, ClearanceMap::create_for(grid).value(), targets, inflation);
+    for (std::uint32_t i = 0; i < field.cell_count(); ++i) {
+      ASSERT_EQ(field.traversable(i), fresh.traversable(i)) << "cell " << i;
+      ASSERT_EQ(field.cost_at(i), fresh.cost_at(i)) << "cell " << i;
+    }
+  }
+}
+
+TEST(DistanceFieldBlocksTest, BlocksOfAtMostHalfTheInflationGoRoundAWallOneCellThick) {
+  // A 2 cm map, 3 m x 2.4 m, with a wall one cell thick at x = 1.5 m from the floor to 1.4 m: the
+  // cells on either side of it are close enough to share a block of 10 cm, but not traversable
+  // (0.3 m of clearance); those a block further are, and blocks of them must not meet across it.
+  OccupancyGrid grid = make_grid(150, 120, 0.02);
+  for (int y = 0; y < 70; ++y) grid.set(75, y, Cell::kObstacle);
+  const double inflation = 0.3;
+  const int b = DistanceField::block_for(0.02, 0.1, inflation);
+  ASSERT_EQ(b, 5);
+  const auto clearance = ClearanceMap::create_for(grid).value();
+  int target_x = 0;
+  int target_y = 0;
+  ASSERT_TRUE(grid.to_cell(1.1, 0.4, target_x, target_y));
+  const std::vector<std::uint32_t> target = {grid.index(target_x, target_y)};
+  auto blocks = DistanceField::create(150, 120, 0.02, b).value();
+  blocks.compute(grid, clearance, target, inflation);
+  auto cells = DistanceField::create(150, 120, 0.02).value();
+  cells.compute(grid, clearance, target, inflation);
+  // Across the wall, 0.8 m away in a straight line: round its top (at 1.4 m, passed 0.3 m
+  // above it), more than 2 x 1.3 m.
+  const double across = blocks.distance_m(1.9, 0.4);
+  EXPECT_GT(across, 2.6);
+  // Within a few blocks of the cells' own field (the seeds and the steps move by a block).
+  EXPECT_NEAR(across, cells.distance_m(1.9, 0.4), 0.3);
+  EXPECT_NEAR(blocks.distance_m(1.1, 1.8), cells.distance_m(1.1, 1.8), 0.2);
+  // Descending from there climbs toward the wall's top, block by block, by the drop asked for.
+  const std::uint32_t from = blocks.cell_at(1.9, 0.4);
+  const std::uint32_t drop = 25 * DistanceField::kOrthogonalCost;  // half a metre of 2 cm cells
+  const std::uint32_t ahead = blocks.descend(from, drop);
+  EXPECT_GE(blocks.cost_at(from) - blocks.cost_at(ahead), drop);
+  EXPECT_LT(blocks.cost_at(from) - blocks.cost_at(ahead), drop + 5 * DistanceField::kDiagonalCost);
+  EXPECT_GT(grid.cell_y(ahead), grid.cell_y(from) + 10);
+  EXPECT_TRUE(blocks.traversable(ahead));
+}
+
 }  // namespace
 }  // namespace grip

@@ -101,8 +101,8 @@ class Planner {
   // F as a set of cells with rho toward it computed elsewhere (beside the planning thread, on
   // a copy of the map: ExplorationTarget), so that no whole-map wavefront runs here: F becomes
   // `goal` and rho_field() becomes `rho`, which receives the previous field in exchange (no
-  // copy). `rho` must be a field of this grid's size computed toward these cells with inflation
-  // rho_clearance_m; rho only orders the search, so one computed on a map a cycle older will
+  // copy). `rho` must be a field of this grid's size and rho_field()'s block computed toward
+  // these cells with inflation rho_clearance_m; rho only orders the search, so one computed on a map a cycle older will
   // do. The next retain() or restart() with RhoUpdate::kKeep plans toward it. Errors as for
   // retain(), and kGoalNotCells for a disk (rho toward a disk is computed here, by
   // retain() or restart()); on an error nothing changes.

@@ -59,6 +59,11 @@ struct PlannerConfig {
   // leads through passages rather than along walls and around corners a vehicle cannot take.
   // States in such cells have rho = +infinity and are selected last. 0 = the plain grid.
   double rho_clearance_m = 0.3;
+  // rho's wavefront runs on cells of at most this size [m] (and half rho_clearance_m): on a
+  // finer map, on blocks of its cells (world/distance_field.hpp), so that a whole-map wavefront
+  // costs what it costs on a map of this resolution; rho then steps every block rather than
+  // every cell. 0: the map's cells.
+  double rho_cell_m = 0.1;
   // For a vehicle with a minimum turning radius (the car): rho also counts the turn a state
   // needs to head along its path (planner/turning_rho.hpp). Vehicles that turn in place have
   // rho_A* alone either way.

@@ -11,11 +11,21 @@
 // target that is not traversable (targets are always seeds) but never enters a non-traversable
 // cell otherwise.
 //
-// Queue: Dial's algorithm, a cyclic bucket queue of 100 buckets (> the largest edge cost)
-// threaded through per-cell next/prev arrays; O(cells reached) per wavefront, plus the
-// box the previous one reached (cleared). The traversable set is rebuilt in O(cells), or
+// Queue: Dial's algorithm, a cyclic bucket queue of 128 buckets (a power of two above the
+// largest edge cost) threaded through per-cell next/prev arrays; O(cells reached) per wavefront,
+// plus the box the previous one reached (cleared). The traversable set is rebuilt in O(cells), or
 // within the window of a change (the windowed prepare()). All buffers are allocated
 // by create(); compute() and the lookups never allocate and never throw.
+//
+// Blocks: a field may run its wavefront over blocks of b x b grid cells (create's `block`;
+// block_for() picks b), so that it costs on a fine map what it costs on a coarse one of the same
+// size in metres. A block is traversable when one of its cells is, and a step between blocks
+// costs b grid cells' worth (70 b, 99 b). The interface stays the grid's: cells, indices and
+// costs are the grid's, and every cell of a block reads the block's value. With b x resolution
+// at most half the inflation, two traversable cells in neighbouring blocks lie less than the
+// inflation apart, so the segment between them is free: a step between blocks never crosses a
+// wall (it may pass a gap a little narrower than one the cells pass), and every path of
+// traversable cells is a path of blocks.
 
 #include <cstdint>
 #include <limits>
@@ -46,14 +56,21 @@ class DistanceField {
   static constexpr std::uint32_t kUnreachable = std::numeric_limits<std::uint32_t>::max();
   static constexpr std::uint32_t kNoCell = std::numeric_limits<std::uint32_t>::max();
 
-  // Allocates every buffer for grids of exactly this size and resolution; errors as for
-  // OccupancyGrid::create.
-  static Result<DistanceField> create(int width_cells, int height_cells, double resolution_m);
+  // Allocates every buffer for grids of exactly this size and resolution, the wavefront over
+  // blocks of block x block of their cells (1: the cells themselves); errors as for
+  // OccupancyGrid::create, and for block < 1.
+  static Result<DistanceField> create(int width_cells, int height_cells, double resolution_m,
+                                      int block = 1);
+  // The block for a field on a grid of resolution_m with this inflation: the largest whose side
+  // is at most max_cell_m and half the inflation (1 when none is: inflation 0, or cells already
+  // that large).
+  static int block_for(double resolution_m, double max_cell_m, double inflation_m) noexcept;
 
   // Builds the traversable set from the grid, every free cell traversable (no inflation), and
   // runs the wavefront from target_cells (grid indices). Returns the number of reachable
-  // cells, targets included; 0 for an empty target set (everything then reads unreachable).
-  // Asserts: the grid's size and resolution match create(), every target < cell_count().
+  // cells (with blocks: blocks), targets included; 0 for an empty target set (everything then reads
+  // unreachable). Asserts: the grid's size and resolution match create(), every target <
+  // cell_count().
   std::uint32_t compute(const OccupancyGrid& grid,
                         std::span<const std::uint32_t> target_cells) noexcept;
   // Same with an inflation: the clearance map is computed from this grid at its current revision
@@ -74,7 +91,8 @@ class DistanceField {
   // set there only.
   void prepare(const OccupancyGrid& grid, const ClearanceMap& clearance, double inflation_m,
                const CellBox& window) noexcept;
-  // The wavefront, to the end; returns the number of cells it reached (targets included).
+  // The wavefront, to the end; returns the number of cells (with blocks: blocks) it reached,
+  // targets included.
   std::uint32_t propagate(std::span<const std::uint32_t> target_cells) noexcept;
   // The wavefront in steps, for a caller that needs only the cells up to some cost and does not
   // know that cost in advance (FrontierMap: the frontier nearest by score): start() seeds it
@@ -99,8 +117,9 @@ class DistanceField {
   }
   // The cell a shortest path from `cell_index` to the target set reaches once its cost has
   // dropped by at least `cost_drop` (cost units), or the target it ends at when it is shorter:
-  // steepest descent, each step to the neighbour with the least cost plus step. `cell_index`
-  // itself when it is unreachable. O(steps); asserts cell_index < cell_count().
+  // steepest descent, each step to the neighbour with the least cost plus step (with blocks:
+  // from block to block, ending at the centre cell of the last). `cell_index` itself when it is
+  // unreachable or no step is taken. O(steps); asserts cell_index < cell_count().
   std::uint32_t descend(std::uint32_t cell_index, std::uint32_t cost_drop) const noexcept;
   // The cell containing (x_m, y_m), or kNoCell outside the grid or not finite.
   std::uint32_t cell_at(double x_m, double y_m) const noexcept;
@@ -111,6 +130,8 @@ class DistanceField {
   int width() const noexcept { return width_; }
   int height() const noexcept { return height_; }
   double resolution() const noexcept { return resolution_; }
+  // Grid cells per side of the wavefront's blocks.
+  int block() const noexcept { return block_; }
   // The grid's origin [m] as of the last prepare()/compute() (its cell (0, 0)'s lower corner).
   double origin_x_m() const noexcept { return origin_x_m_; }
   double origin_y_m() const noexcept { return origin_y_m_; }
@@ -128,25 +149,27 @@ class DistanceField {
   void set_tag(std::uint32_t tag) noexcept { tag_ = tag; }
 
  private:
-  static constexpr std::uint32_t kBuckets = 100;  // > kDiagonalCost
   static constexpr std::uint32_t kNil = std::numeric_limits<std::uint32_t>::max();
 
-  // Dijkstra's queue and labels over the padded grid (a ring of never-traversable cells
-  // around the real ones, so neighbours need no bounds tests).
+  // Dijkstra's queue and labels over the padded blocks (a ring of never-traversable blocks
+  // around the real ones, so neighbours need no bounds tests); buckets: the power of two above
+  // the largest step (99 b).
   struct Search {
     std::vector<std::uint32_t> cost;
     std::vector<std::uint32_t> next;
     std::vector<std::uint32_t> prev;
-    std::uint32_t head[kBuckets];
+    std::vector<std::uint32_t> head;
     detail::DialQueue queue;
   };
 
-  DistanceField(int width_cells, int height_cells, double resolution_m);
+  DistanceField(int width_cells, int height_cells, double resolution_m, int block);
   void build_mask(const OccupancyGrid& grid, const ClearanceMap* clearance, double inflation_m,
                   const CellBox& window) noexcept;
   CellBox whole() const noexcept { return CellBox{0, 0, width_ - 1, height_ - 1}; }
   void note_reached(std::uint32_t padded_index) noexcept;
+  // The padded block holding a cell, and a block's cell (its centre one, within the grid).
   std::uint32_t padded(std::uint32_t cell_index) const noexcept;
+  std::uint32_t padded(std::uint32_t x, std::uint32_t y) const noexcept;
   std::uint32_t unpadded(std::uint32_t padded_index) const noexcept;
 
   int width_;
@@ -154,6 +177,9 @@ class DistanceField {
   double resolution_;
   double inv_resolution_;
   double metres_per_unit_;
+  int block_;
+  std::uint32_t orthogonal_cost_;  // of a step between blocks: 70 b, 99 b
+  std::uint32_t diagonal_cost_;
   std::uint32_t padded_width_;
   double origin_x_m_ = 0.0;
   double origin_y_m_ = 0.0;
@@ -162,7 +188,7 @@ class DistanceField {
   std::vector<std::uint8_t> traversable_;       // padded
   const OccupancyGrid* mask_source_ = nullptr;  // traversable_ built from it, whole first
   std::uint32_t tag_ = 0;
-  // The padded columns and rows of the cells the last wavefront settled, and of its seeds
+  // The padded columns and rows of the blocks the last wavefront settled, and of its seeds
   // (empty: x0 > x1).
   struct ReachedBox {
     std::uint32_t x0 = kNil;
