@@ -102,10 +102,10 @@ class Planner {
   // a copy of the map: ExplorationTarget), so that no whole-map wavefront runs here: F becomes
   // `goal` and rho_field() becomes `rho`, which receives the previous field in exchange (no
   // copy). `rho` must be a field of this grid's size and rho_field()'s block computed toward
-  // these cells with inflation rho_clearance_m; rho only orders the search, so one computed on a map a cycle older will
-  // do. The next retain() or restart() with RhoUpdate::kKeep plans toward it. Errors as for
-  // retain(), and kGoalNotCells for a disk (rho toward a disk is computed here, by
-  // retain() or restart()); on an error nothing changes.
+  // these cells with inflation rho_clearance_m; rho only orders the search, so one computed on
+  // a map a cycle older will do. The next retain() or restart() with RhoUpdate::kKeep plans
+  // toward it. Errors as for retain(), and kGoalNotCells for a disk (rho toward a disk is
+  // computed here, by retain() or restart()); on an error nothing changes.
   RetainStatus adopt_goal(const Goal& goal, DistanceField& rho) noexcept;
   // Where cells changed between free and non-free since the last retain() or restart(), when
   // the caller knows (e.g. a cycle's map updates): the collision checker's clearance is then

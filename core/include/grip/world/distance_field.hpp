@@ -11,8 +11,8 @@
 // target that is not traversable (targets are always seeds) but never enters a non-traversable
 // cell otherwise.
 //
-// Queue: Dial's algorithm, a cyclic bucket queue of 128 buckets (a power of two above the
-// largest edge cost) threaded through per-cell next/prev arrays; O(cells reached) per wavefront,
+// Queue: Dial's algorithm, a cyclic bucket queue (a power of two of buckets above the largest
+// edge cost: 128) threaded through per-cell next/prev arrays; O(cells reached) per wavefront,
 // plus the box the previous one reached (cleared). The traversable set is rebuilt in O(cells), or
 // within the window of a change (the windowed prepare()). All buffers are allocated
 // by create(); compute() and the lookups never allocate and never throw.
@@ -58,7 +58,7 @@ class DistanceField {
 
   // Allocates every buffer for grids of exactly this size and resolution, the wavefront over
   // blocks of block x block of their cells (1: the cells themselves); errors as for
-  // OccupancyGrid::create, and for block < 1.
+  // OccupancyGrid::create, and for a block outside [1, OccupancyGrid::kMaxSideCells].
   static Result<DistanceField> create(int width_cells, int height_cells, double resolution_m,
                                       int block = 1);
   // The block for a field on a grid of resolution_m with this inflation: the largest whose side
