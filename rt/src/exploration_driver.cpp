@@ -11,7 +11,7 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
                                                           const PlannerConfig& planner) {
   ExplorationTargetConfig target_config = config.target;
   target_config.frontier.clearance_m = planner.rho_clearance_m;
-  target_config.rho_cell_m = planner.rho_cell_m;
+  target_config.frontier.rho_cell_m = planner.rho_cell_m;
   if (vehicle.min_turning_radius_m() > 0.0) {
     KinematicReachConfig kinematics;
     kinematics.turning_radius_m = vehicle.min_turning_radius_m();

@@ -21,10 +21,6 @@ Status ExplorationTargetConfig::validate(double resolution_m) const {
   if (kinematics) {
     if (Status s = kinematics->validate(); !s) return s;
   }
-  if (!(std::isfinite(rho_cell_m) && rho_cell_m >= 0.0)) {
-    return invalid_argument("exploration target: rho_cell_m must be finite and >= 0 (got " +
-                            detail::format_number(rho_cell_m) + ")");
-  }
   return positive("retarget_m", retarget_m);
 }
 
@@ -36,9 +32,10 @@ Result<ExplorationTarget> ExplorationTarget::create(const OccupancyGrid& like,
   auto frontiers =
       FrontierMap::create(like.width(), like.height(), like.resolution(), config.frontier);
   if (!frontiers) return frontiers.error();
-  auto rho = DistanceField::create(
-      like.width(), like.height(), like.resolution(),
-      DistanceField::block_for(like.resolution(), config.rho_cell_m, config.frontier.clearance_m));
+  auto rho =
+      DistanceField::create(like.width(), like.height(), like.resolution(),
+                            DistanceField::block_for(like.resolution(), config.frontier.rho_cell_m,
+                                                     config.frontier.clearance_m));
   if (!rho) return rho.error();
   auto map = std::make_unique<OccupancyGrid>(like);
   std::optional<KinematicReach> reach;

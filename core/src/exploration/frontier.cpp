@@ -53,6 +53,9 @@ Status FrontierConfig::validate(double resolution_m) const {
   if (!(std::isfinite(clearance_m) && clearance_m >= 0.0)) {
     return bad("clearance_m", clearance_m, "finite and >= 0");
   }
+  if (!(std::isfinite(rho_cell_m) && rho_cell_m >= 0.0)) {
+    return bad("rho_cell_m", rho_cell_m, "finite and >= 0");
+  }
   const double min_range = clearance_m + resolution_m * std::sqrt(2.0);
   if (!(std::isfinite(approach_range_m) && approach_range_m > min_range)) {
     return bad("approach_range_m", approach_range_m,
@@ -81,7 +84,9 @@ Result<FrontierMap> FrontierMap::create(int width_cells, int height_cells, doubl
     return *std::move(error);
   }
   if (auto s = config.validate(resolution_m); !s) return s.error();
-  auto field = DistanceField::create(width_cells, height_cells, resolution_m);
+  auto field = DistanceField::create(
+      width_cells, height_cells, resolution_m,
+      DistanceField::block_for(resolution_m, config.rho_cell_m, config.clearance_m));
   if (!field) return field.error();
   return FrontierMap(width_cells, height_cells, resolution_m, config, std::move(field).value());
 }
@@ -196,14 +201,17 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
     status_ = ExplorationStatus::kRobotOutsideGrid;
     return status_;
   }
+  const std::uint32_t min_d2 = clearance.squared_cells_at_least(config_.clearance_m);
+  const ChassisCells chassis{grid.cells().data(),
+                             min_d2 == 0 ? nullptr : clearance.squared_cells().data(), min_d2};
   group(grid);
-  seed_robot_field(grid, robot_cx, robot_cy);
-  choose_target(grid, reached);
+  seed_robot_field(grid, chassis, robot_cx, robot_cy);
+  choose_target(grid, chassis, reached);
   if (target_ == kNoGroup) {
     status_ = ExplorationStatus::kComplete;
     return status_;
   }
-  collect_approach_cells(grid, groups_[target_]);
+  collect_approach_cells(grid, chassis, groups_[target_]);
   status_ = ExplorationStatus::kTarget;
   return status_;
 }
@@ -214,7 +222,7 @@ std::uint32_t FrontierMap::search_step_cost() const noexcept {
   return saturating_cast<std::uint32_t>(std::ceil(cells * DistanceField::kCostUnitsPerCell));
 }
 
-void FrontierMap::choose_target(const OccupancyGrid& grid,
+void FrontierMap::choose_target(const OccupancyGrid& grid, const ChassisCells& chassis,
                                 const KinematicReachability& reached) noexcept {
   // The robot's wavefront in steps of search_step_m. After each, a group is measured when the
   // cells settled so far decide its rho (any cell not settled yet costs more than the step's
@@ -239,7 +247,7 @@ void FrontierMap::choose_target(const OccupancyGrid& grid,
       // A group the wavefront cannot have come near yet is not measured: measuring reads the
       // whole approach window of each of its cells, and a group is pending for many steps.
       if (group.searched || rho_lower_bound(group, robot_cx, robot_cy) > settled ||
-          !measure_group(grid, group, settled)) {
+          !measure_group(grid, chassis, group, settled)) {
         continue;
       }
       group.searched = true;
@@ -337,20 +345,22 @@ void FrontierMap::group(const OccupancyGrid& grid) noexcept {
 }
 
 template <typename Visit>
-void FrontierMap::for_each_approach(const OccupancyGrid& grid, int cx, int cy,
-                                    Visit&& visit) const noexcept {
+void FrontierMap::for_each_approach(const OccupancyGrid& grid, const ChassisCells& chassis, int cx,
+                                    int cy, Visit&& visit) const noexcept {
   for (const Offset& o : window_) {
     const int x = cx + o.dx;
     const int y = cy + o.dy;
     if (!grid.in_bounds(x, y)) continue;
     const std::uint32_t c = grid.index(x, y);
     const std::uint32_t cost = field_.cost_at(c);
-    if (cost == kUnreachable) continue;
+    // On blocks, a reached block's cells are not all chassis cells.
+    if (cost == kUnreachable || !approach_start(chassis, c)) continue;
     visit(c, x, y, cost + o.cost);
   }
 }
 
-void FrontierMap::seed_robot_field(const OccupancyGrid& grid, int robot_cx, int robot_cy) noexcept {
+void FrontierMap::seed_robot_field(const OccupancyGrid& grid, const ChassisCells& chassis,
+                                   int robot_cx, int robot_cy) noexcept {
   seeds_.clear();
   GRIP_ASSERT(seeds_.push_back(grid.index(robot_cx, robot_cy)));
   for (const Offset& o : window_) {
@@ -358,7 +368,7 @@ void FrontierMap::seed_robot_field(const OccupancyGrid& grid, int robot_cx, int 
     const int y = robot_cy + o.dy;
     if (o.cost == 0 || !grid.in_bounds(x, y)) continue;
     const std::uint32_t c = grid.index(x, y);
-    if (field_.traversable(c) && detail::in_sight(grid, robot_cx, robot_cy, x, y)) {
+    if (chassis.contains(c) && detail::in_sight(grid, robot_cx, robot_cy, x, y)) {
       GRIP_ASSERT(seeds_.push_back(c));  // at most the window's size, < cells
     }
   }
@@ -376,13 +386,14 @@ std::uint32_t FrontierMap::rho_lower_bound(const FrontierGroup& group, int robot
     nearest2 = std::min(nearest2, dx * dx + dy * dy);
   }
   const double straight = std::sqrt(static_cast<double>(nearest2)) -
-                          config_.approach_range_m / resolution_;  // a seed's offset at most
+                          config_.approach_range_m / resolution_ -  // a seed's offset at most
+                          std::sqrt(2.0) * (field_.block() - 1);    // cells from their blocks'
   const double bound = straight * DistanceField::kCostUnitsPerCell - 2.0;
   return bound <= 0.0 ? 0U : saturating_cast<std::uint32_t>(std::floor(bound));
 }
 
-bool FrontierMap::measure_group(const OccupancyGrid& grid, FrontierGroup& group,
-                                std::uint32_t settled) noexcept {
+bool FrontierMap::measure_group(const OccupancyGrid& grid, const ChassisCells& chassis,
+                                FrontierGroup& group, std::uint32_t settled) noexcept {
   // Per cell: the cheapest chassis cell in its window, in sight, among the cells settled.
   // Candidates that cannot improve on the best so far skip the sight test, which is the only
   // costly part.
@@ -393,13 +404,15 @@ bool FrontierMap::measure_group(const OccupancyGrid& grid, FrontierGroup& group,
     const std::uint32_t c = cells_[i];
     const int cx = static_cast<int>(c % w);
     const int cy = static_cast<int>(c / w);
-    for_each_approach(grid, cx, cy, [&](std::uint32_t a, int x, int y, std::uint32_t cost) {
-      if (cost >= best || field_.cost_at(a) > settled || !detail::in_sight(grid, x, y, cx, cy)) {
-        return;
-      }
-      best = cost;
-      nearest = c;
-    });
+    for_each_approach(grid, chassis, cx, cy,
+                      [&](std::uint32_t a, int x, int y, std::uint32_t cost) {
+                        if (cost >= best || field_.cost_at(a) > settled ||
+                            !detail::in_sight(grid, x, y, cx, cy)) {
+                          return;
+                        }
+                        best = cost;
+                        nearest = c;
+                      });
   }
   // Decided when no cell beyond the settled ones could give less: they cost more than `settled`
   // (or there are none: the wavefront has run to the end).
@@ -434,7 +447,7 @@ bool FrontierMap::reached_by(const OccupancyGrid& grid, const FrontierGroup& gro
   return false;
 }
 
-void FrontierMap::collect_approach_cells(const OccupancyGrid& grid,
+void FrontierMap::collect_approach_cells(const OccupancyGrid& grid, const ChassisCells& chassis,
                                          const FrontierGroup& group) noexcept {
   if (++generation_ == 0) {  // wrapped: old stamps could alias the new generation
     std::fill(stamp_.begin(), stamp_.end(), 0U);
@@ -452,7 +465,7 @@ void FrontierMap::collect_approach_cells(const OccupancyGrid& grid,
       const int y = cy + o.dy;
       if (!grid.in_bounds(x, y)) continue;
       const std::uint32_t a = grid.index(x, y);
-      if (stamp_[a] == generation_ || (!field_.reachable(a) && !field_.traversable(a)) ||
+      if (stamp_[a] == generation_ || !approach_start(chassis, a) ||
           !detail::in_sight(grid, x, y, cx, cy)) {
         continue;
       }

@@ -100,7 +100,7 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
     if (seed > 6) {
       config.frontier.clearance_m = 0.4;
       config.frontier.approach_range_m = 0.6;
-      config.rho_cell_m = 0.2;
+      config.frontier.rho_cell_m = 0.2;
     }
     auto incremental = ExplorationTarget::create(map, config).value();
     const OccupancyGrid planners_map = map;

@@ -115,16 +115,28 @@ TEST_F(FrontierTest, AFrontierBehindAGapTooNarrowForTheChassisIsNotReachable) {
   EXPECT_GE(grid->cell_x(target.nearest_cell), 50);  // beyond the wall
 }
 
-TEST_F(FrontierTest, ApproachCellsAreChassisCellsNearTheTargetAndReachable) {
+class FrontierApproachTest : public FrontierTest, public ::testing::WithParamInterface<bool> {};
+
+TEST_P(FrontierApproachTest, ApproachCellsAreChassisCellsNearTheTargetAndReachable) {
+  // With the parameter, the robot's wavefront runs on blocks of 2 x 2 cells (a clearance of
+  // 0.4 m allows 0.2 m): a reached block's cells include some that are not chassis cells.
+  if (GetParam()) {
+    config.clearance_m = 0.4;
+    config.approach_range_m = 0.6;
+    config.rho_cell_m = 0.2;
+  }
   make_grid(100, 60, Cell::kObstacle);
   walled_room(0.0, 0.0, 10.0, 6.0);
-  grid->fill_rect(7.0, 2.0, 7.5, 3.0, Cell::kUnknown);  // an unknown pocket in the room
+  grid->fill_rect(7.0, 2.0, 7.5, 3.0, Cell::kUnknown);    // an unknown pocket in the room
+  grid->fill_rect(7.6, 2.0, 7.65, 3.0, Cell::kObstacle);  // and a post beside it
   ASSERT_EQ(update(1.5, 3.0), ExplorationStatus::kTarget);
+  ASSERT_EQ(frontiers->robot_field().block(), GetParam() ? 2 : 1);
   ASSERT_FALSE(frontiers->approach_cells().empty());
   const std::span<const std::uint32_t> target = frontiers->target_cells();
   for (const std::uint32_t a : frontiers->approach_cells()) {
     EXPECT_TRUE(frontiers->robot_field().reachable(a));
-    EXPECT_TRUE(frontiers->robot_field().traversable(a));
+    EXPECT_EQ(grid->at(a), Cell::kFree);
+    EXPECT_GE(clearance->clearance_m(a), config.clearance_m);
     double nearest = 1e9;
     for (const std::uint32_t c : target) {
       nearest = std::min(nearest, std::hypot(grid->cell_x(a) - grid->cell_x(c),
@@ -138,6 +150,11 @@ TEST_F(FrontierTest, ApproachCellsAreChassisCellsNearTheTargetAndReachable) {
   std::sort(sorted.begin(), sorted.end());
   EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
 }
+
+INSTANTIATE_TEST_SUITE_P(CellsAndBlocks, FrontierApproachTest, ::testing::Bool(),
+                         [](const auto& param_info) {
+                           return param_info.param ? "Blocks" : "Cells";
+                         });
 
 class FrontierTargetTest : public FrontierTest {
  protected:
@@ -265,7 +282,8 @@ OccupancyGrid random_known_space(Random& random) {
 TEST(FrontierSearch, AWavefrontInStepsChoosesWhatOneOverAllTheKnownSpaceChooses) {
   // GIVEN random known spaces and robots, and frontier maps whose robot wavefront runs in
   // steps of 0.2 m, 0.7 m and the default length, beside one that runs over everything at once
-  // (scored by distance alone, and with the size term)
+  // (scored by distance alone, and with the size term; every fourth map with the wavefront on
+  // blocks of 3 x 3 cells, which a clearance of 0.6 m allows)
   Random random(41);
   int targets = 0;
   int completes = 0;
@@ -284,6 +302,11 @@ TEST(FrontierSearch, AWavefrontInStepsChoosesWhatOneOverAllTheKnownSpaceChooses)
       FrontierConfig config;
       config.search_step_m = step;
       config.size_weight = size_weight;
+      if (trial % 4 == 3) {
+        config.clearance_m = 0.6;
+        config.approach_range_m = 0.8;
+        config.rho_cell_m = 0.3;
+      }
       maps.push_back(FrontierMap::create(120, 80, 0.1, config).value());
     }
     // WHEN each chooses, then again after giving up what the exact one chose, three times
@@ -317,6 +340,39 @@ TEST(FrontierSearch, AWavefrontInStepsChoosesWhatOneOverAllTheKnownSpaceChooses)
   }
   EXPECT_GT(targets, 300);  // the maps gave both outcomes, many times
   EXPECT_GT(completes, 5);
+}
+
+TEST(FrontierSearch, OnBlocksTheStraightLineBoundAllowsForABlocksDiagonal) {
+  // GIVEN open rooms with small unknown pockets at random, and the robot's wavefront on blocks
+  // of 5 x 5 cells (a clearance of 1 m allows 0.5 m), where a path of blocks may be shorter than
+  // the straight line between its cells by up to a block's diagonal
+  Random random(7);
+  for (int trial = 0; trial < 1200; ++trial) {
+    OccupancyGrid grid = OccupancyGrid::create(120, 80, 0.1, 0.0, 0.0, Cell::kObstacle).value();
+    grid.fill_rect(0.3, 0.3, 11.7, 7.7, Cell::kFree);
+    // One pocket on the robot's row (where a block path is no longer than the straight line
+    // but its cells' offsets in their blocks are not counted), one anywhere.
+    const double rx = random.uniform(1.5, 10.5);
+    const double ry = random.uniform(1.5, 6.5);
+    const double bx = random.uniform(1.5, 10.5);
+    grid.fill_rect(bx, ry, bx + 0.1, ry + 0.1, Cell::kUnknown);
+    const double ax = random.uniform(1.5, 10.5);
+    const double ay = random.uniform(1.5, 6.5);
+    grid.fill_rect(ax, ay, ax + 0.1, ay + 0.1, Cell::kUnknown);
+    const ClearanceMap clearance = ClearanceMap::create_for(grid).value();
+    FrontierConfig config;
+    config.clearance_m = 1.0;
+    config.approach_range_m = 1.2;
+    config.rho_cell_m = 0.5;
+    config.size_weight = 0.0;
+    config.search_step_m = 0.0;
+    FrontierMap exact = FrontierMap::create(120, 80, 0.1, config).value();
+    config.search_step_m = 0.1;
+    FrontierMap stepped = FrontierMap::create(120, 80, 0.1, config).value();
+    // WHEN both choose THEN they choose alike
+    ASSERT_EQ(stepped.update(grid, clearance, rx, ry), exact.update(grid, clearance, rx, ry));
+    ASSERT_EQ(stepped.target(), exact.target()) << "trial " << trial;
+  }
 }
 
 TEST(FrontierSearch, ANearTargetLeavesTheFarKnownSpaceUnsearched) {

@@ -49,13 +49,10 @@ struct ExplorationTargetConfig {
   double progress_m = 0.5;         // rho_A* must drop by this much to count as progress
   double retarget_m = 3.0;         // a nearest cell that moves this far is a new target
   std::uint32_t retry_rounds = 1;  // times the groups given up are retried when nothing is left
-  // [m] rho's cells at most this large: must equal the planner's PlannerConfig::rho_cell_m (the
-  // field goes to it), as frontier.clearance_m its rho_clearance_m.
-  double rho_cell_m = 0.1;
   // For a vehicle with a minimum turning radius; none for one that turns in place.
   std::optional<KinematicReachConfig> kinematics;
-  // Errors name the bad value: FrontierConfig's, KinematicReachConfig's, rho_cell_m not finite
-  // or < 0, and any other of the above not finite or not > 0.
+  // Errors name the bad value: FrontierConfig's, KinematicReachConfig's, and any of the above
+  // not finite or not > 0.
   Status validate(double resolution_m) const;
 };
 

@@ -50,6 +50,11 @@ struct FrontierConfig {
   // PlannerConfig::rho_clearance_m: approach cells are handed to the planner as its target set
   // F, and its rho wavefront only leaves target cells it can traverse.
   double clearance_m = 0.3;
+  // [m] The robot's wavefront runs on blocks of cells at most this large (and half clearance_m;
+  // world/distance_field.hpp), as the planner's rho does: must equal PlannerConfig::rho_cell_m,
+  // whose rho toward the approach cells ExplorationTarget computes with it. Approach cells and
+  // the wavefront's seeds stay chassis cells. 0: the map's cells.
+  double rho_cell_m = 0.1;
   // [m] How close the reference point must come to a frontier cell (straight, in sight). At
   // least clearance_m plus a cell diagonal, or a frontier along a straight wall of unknown space
   // could never be approached: the nearest chassis cell lies about clearance_m + 0.07 m away.
@@ -73,9 +78,9 @@ struct FrontierConfig {
   // group, and what it becomes while the map around it does not change, is no longer a target.
   double give_up_radius_m = 1.0;
 
-  // Errors name the bad value: clearance_m < 0, approach_range_m not > clearance_m + one cell
-  // diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0, search_step_m < 0 (or any
-  // of them not finite), min_group_cells 0.
+  // Errors name the bad value: clearance_m < 0, rho_cell_m < 0, approach_range_m not >
+  // clearance_m + one cell diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0,
+  // search_step_m < 0 (or any of them not finite), min_group_cells 0.
   Status validate(double resolution_m) const;
   bool operator==(const FrontierConfig&) const = default;
 };
@@ -179,6 +184,18 @@ class FrontierMap {
     std::uint32_t cost;  // straight distance in DistanceField cost units (resolution / 70)
   };
 
+  // The chassis cells (kFree, clearance >= clearance_m) of an update()'s grid and clearance
+  // map, read cell by cell: the robot's wavefront may run on blocks.
+  struct ChassisCells {
+    const Cell* cells;
+    const std::uint32_t* squared_clearance;  // nullptr: every free cell (clearance_m 0)
+    std::uint32_t min_squared_clearance;
+    bool contains(std::uint32_t c) const noexcept {
+      return cells[c] == Cell::kFree &&
+             (squared_clearance == nullptr || squared_clearance[c] >= min_squared_clearance);
+    }
+  };
+
   FrontierMap(int width_cells, int height_cells, double resolution_m, const FrontierConfig& config,
               DistanceField field);
   ExplorationStatus update(const OccupancyGrid& grid, const ClearanceMap& clearance,
@@ -191,22 +208,31 @@ class FrontierMap {
   bool is_frontier(std::uint32_t c) const noexcept {
     return ((frontier_bits_[c >> 6] >> (c & 63U)) & 1U) != 0;
   }
-  void seed_robot_field(const OccupancyGrid& grid, int robot_cx, int robot_cy) noexcept;
+  void seed_robot_field(const OccupancyGrid& grid, const ChassisCells& chassis, int robot_cx,
+                        int robot_cy) noexcept;
   std::uint32_t search_step_cost() const noexcept;
-  void choose_target(const OccupancyGrid& grid, const KinematicReachability& reached) noexcept;
+  void choose_target(const OccupancyGrid& grid, const ChassisCells& chassis,
+                     const KinematicReachability& reached) noexcept;
   // [cost units] A bound the group's rho cannot beat, from straight lines alone: every approach
-  // path starts at a seed, within the approach range of the robot's cell (robot_cx, robot_cy).
+  // path starts at a seed, within the approach range of the robot's cell (robot_cx, robot_cy),
+  // and a path over blocks may be shorter by up to a block's diagonal.
   std::uint32_t rho_lower_bound(const FrontierGroup& group, int robot_cx,
                                 int robot_cy) const noexcept;
   // Sets the group's rho_m and nearest_cell from the cells the robot's wavefront has settled up
   // to cost `settled`; false (nothing set) when cells beyond could still give a smaller rho.
-  bool measure_group(const OccupancyGrid& grid, FrontierGroup& group,
+  bool measure_group(const OccupancyGrid& grid, const ChassisCells& chassis, FrontierGroup& group,
                      std::uint32_t settled) noexcept;
-  void collect_approach_cells(const OccupancyGrid& grid, const FrontierGroup& group) noexcept;
-  // Calls visit(cell, x, y, cost via it) for every chassis cell the wavefront reached within the
-  // approach window of (cx, cy); the caller tests sight (only when the cost could matter).
+  void collect_approach_cells(const OccupancyGrid& grid, const ChassisCells& chassis,
+                              const FrontierGroup& group) noexcept;
+  // Whether the approach may start at cell c: a chassis cell, or the robot's own (a seed).
+  bool approach_start(const ChassisCells& chassis, std::uint32_t c) const noexcept {
+    return chassis.contains(c) || c == seeds_[0];
+  }
+  // Calls visit(cell, x, y, cost via it) for every approach start the wavefront reached within
+  // the approach window of (cx, cy); the caller tests sight (only when the cost could matter).
   template <typename Visit>
-  void for_each_approach(const OccupancyGrid& grid, int cx, int cy, Visit&& visit) const noexcept;
+  void for_each_approach(const OccupancyGrid& grid, const ChassisCells& chassis, int cx, int cy,
+                         Visit&& visit) const noexcept;
 
   int width_;
   int height_;

@@ -37,8 +37,9 @@ template <VehicleModel V>
 class ExplorationDriver {
  public:
   // For the planner's grid (its geometry) and pools (max_edges); rho's inflation and cells are
-  // the planner's (PlannerConfig::rho_clearance_m, rho_cell_m). A vehicle with a minimum turning radius gets
-  // targets its kinematics can reach (ExplorationTargetConfig::kinematics, from its chassis).
+  // the planner's (PlannerConfig::rho_clearance_m, rho_cell_m). A vehicle with a minimum turning
+  // radius gets targets its kinematics can reach (ExplorationTargetConfig::kinematics, from its
+  // chassis).
   static Result<ExplorationDriver> create(const V& vehicle, const OccupancyGrid& grid,
                                           const ExplorationDriverConfig& config,
                                           const PlannerConfig& planner);
