@@ -53,7 +53,8 @@ struct FrontierConfig {
   // [m] The robot's wavefront runs on blocks of cells at most this large (and half clearance_m;
   // world/distance_field.hpp), as the planner's rho does: must equal PlannerConfig::rho_cell_m,
   // whose rho toward the approach cells ExplorationTarget computes with it. Approach cells and
-  // the wavefront's seeds stay chassis cells. 0: the map's cells.
+  // the wavefront's seeds stay chassis cells; the wavefront may pass a gap a little narrower
+  // than one the cells pass. 0: the map's cells.
   double rho_cell_m = 0.1;
   // [m] How close the reference point must come to a frontier cell (straight, in sight). At
   // least clearance_m plus a cell diagonal, or a frontier along a straight wall of unknown space
