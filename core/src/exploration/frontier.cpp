@@ -352,10 +352,12 @@ void FrontierMap::for_each_approach(const OccupancyGrid& grid, const ChassisCell
     const int y = cy + o.dy;
     if (!grid.in_bounds(x, y)) continue;
     const std::uint32_t c = grid.index(x, y);
-    const std::uint32_t cost = field_.cost_at(c);
-    // On blocks, a reached block's cells are not all chassis cells.
-    if (cost == kUnreachable || !approach_start(chassis, c)) continue;
-    visit(c, x, y, cost + o.cost);
+    // The cell first (cheaper than its label): on blocks, a reached block's cells are not all
+    // chassis cells.
+    if (!approach_start(chassis, c)) continue;
+    const std::uint32_t reached = field_.cost_at(c);
+    if (reached == kUnreachable) continue;
+    visit(c, x, y, reached, reached + o.cost);
   }
 }
 
@@ -404,15 +406,15 @@ bool FrontierMap::measure_group(const OccupancyGrid& grid, const ChassisCells& c
     const std::uint32_t c = cells_[i];
     const int cx = static_cast<int>(c % w);
     const int cy = static_cast<int>(c / w);
-    for_each_approach(grid, chassis, cx, cy,
-                      [&](std::uint32_t a, int x, int y, std::uint32_t cost) {
-                        if (cost >= best || field_.cost_at(a) > settled ||
-                            !detail::in_sight(grid, x, y, cx, cy)) {
-                          return;
-                        }
-                        best = cost;
-                        nearest = c;
-                      });
+    for_each_approach(
+        grid, chassis, cx, cy,
+        [&](std::uint32_t, int x, int y, std::uint32_t reached, std::uint32_t cost) {
+          if (cost >= best || reached > settled || !detail::in_sight(grid, x, y, cx, cy)) {
+            return;
+          }
+          best = cost;
+          nearest = c;
+        });
   }
   // Decided when no cell beyond the settled ones could give less: they cost more than `settled`
   // (or there are none: the wavefront has run to the end).

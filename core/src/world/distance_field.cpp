@@ -143,19 +143,6 @@ int DistanceField::block_for(double resolution_m, double max_cell_m, double infl
   return cells >= 2.0 ? static_cast<int>(std::min(cells, 1024.0)) : 1;
 }
 
-std::uint32_t DistanceField::padded(std::uint32_t x, std::uint32_t y) const noexcept {
-  if (block_ != 1) {  // a division on every lookup only where there are blocks
-    x /= static_cast<std::uint32_t>(block_);
-    y /= static_cast<std::uint32_t>(block_);
-  }
-  return (y + 1) * padded_width_ + x + 1;
-}
-
-std::uint32_t DistanceField::padded(std::uint32_t cell_index) const noexcept {
-  const auto w = static_cast<std::uint32_t>(width_);
-  return padded(cell_index % w, cell_index / w);
-}
-
 std::uint32_t DistanceField::unpadded(std::uint32_t padded_index) const noexcept {
   const auto b = static_cast<std::uint32_t>(block_);
   const std::uint32_t x = std::min((padded_index % padded_width_ - 1) * b + b / 2,
@@ -305,11 +292,6 @@ void DistanceField::note_reached(std::uint32_t padded_index) noexcept {
   reached_.x1 = std::max(reached_.x1, column);
   reached_.y0 = std::min(reached_.y0, row);
   reached_.y1 = std::max(reached_.y1, row);
-}
-
-std::uint32_t DistanceField::cost_at(std::uint32_t cell_index) const noexcept {
-  GRIP_ASSERT(cell_index < cell_count());
-  return field_.cost[padded(cell_index)];
 }
 
 double DistanceField::at(std::uint32_t cell_index) const noexcept {

@@ -229,8 +229,9 @@ class FrontierMap {
   bool approach_start(const ChassisCells& chassis, std::uint32_t c) const noexcept {
     return chassis.contains(c) || c == seeds_[0];
   }
-  // Calls visit(cell, x, y, cost via it) for every approach start the wavefront reached within
-  // the approach window of (cx, cy); the caller tests sight (only when the cost could matter).
+  // Calls visit(cell, x, y, its cost, the cost via it) for every approach start the wavefront
+  // reached within the approach window of (cx, cy); the caller tests sight (only when the cost
+  // could matter).
   template <typename Visit>
   void for_each_approach(const OccupancyGrid& grid, const ChassisCells& chassis, int cx, int cy,
                          Visit&& visit) const noexcept;

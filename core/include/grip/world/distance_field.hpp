@@ -32,6 +32,7 @@
 #include <span>
 #include <vector>
 
+#include "grip/common/assert.hpp"
 #include "grip/common/result.hpp"
 #include "grip/world/clearance_map.hpp"
 #include "grip/world/occupancy_grid.hpp"
@@ -111,7 +112,10 @@ class DistanceField {
   // [m] the same by grid index; asserts cell_index < cell_count().
   double at(std::uint32_t cell_index) const noexcept;
   // The same in cost units (resolution / 70), kUnreachable when unreachable.
-  std::uint32_t cost_at(std::uint32_t cell_index) const noexcept;
+  std::uint32_t cost_at(std::uint32_t cell_index) const noexcept {
+    GRIP_ASSERT(cell_index < cell_count());
+    return field_.cost[padded(cell_index)];
+  }
   bool reachable(std::uint32_t cell_index) const noexcept {
     return cost_at(cell_index) != kUnreachable;
   }
@@ -168,8 +172,17 @@ class DistanceField {
   CellBox whole() const noexcept { return CellBox{0, 0, width_ - 1, height_ - 1}; }
   void note_reached(std::uint32_t padded_index) noexcept;
   // The padded block holding a cell, and a block's cell (its centre one, within the grid).
-  std::uint32_t padded(std::uint32_t cell_index) const noexcept;
-  std::uint32_t padded(std::uint32_t x, std::uint32_t y) const noexcept;
+  std::uint32_t padded(std::uint32_t cell_index) const noexcept {
+    const auto w = static_cast<std::uint32_t>(width_);
+    return padded(cell_index % w, cell_index / w);
+  }
+  std::uint32_t padded(std::uint32_t x, std::uint32_t y) const noexcept {
+    if (block_ != 1) {  // a division on every lookup only where there are blocks
+      x /= static_cast<std::uint32_t>(block_);
+      y /= static_cast<std::uint32_t>(block_);
+    }
+    return (y + 1) * padded_width_ + x + 1;
+  }
   std::uint32_t unpadded(std::uint32_t padded_index) const noexcept;
 
   int width_;
