@@ -109,14 +109,17 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
       approach_(field_.cell_count()),
       stamp_(field_.cell_count()),
       given_up_(field_.cell_count()) {
-  const int reach = approach_reach(config, resolution_m);
+  reach_ = approach_reach(config, resolution_m);
   const double reach_cells = config.approach_range_m / resolution_m;
-  for (int dy = -reach; dy <= reach; ++dy) {
-    for (int dx = -reach; dx <= reach; ++dx) {
+  window_costs_.assign(square_cells(reach_), kUnreachable);
+  for (int dy = -reach_; dy <= reach_; ++dy) {
+    for (int dx = -reach_; dx <= reach_; ++dx) {
       const double d = std::hypot(dx, dy);
       if (d > reach_cells) continue;
-      window_.push_back(Offset{
-          dx, dy, static_cast<std::uint32_t>(std::lround(d * DistanceField::kCostUnitsPerCell))});
+      const auto cost =
+          static_cast<std::uint32_t>(std::lround(d * DistanceField::kCostUnitsPerCell));
+      window_.push_back(Offset{dx, dy, cost});
+      window_costs_[window_index(dx, dy)] = cost;
     }
   }
   // Nearest first: the first acceptable cell of equal wavefront cost is the closest one.
@@ -344,20 +347,38 @@ void FrontierMap::group(const OccupancyGrid& grid) noexcept {
   });
 }
 
-template <typename Visit>
+template <typename Wanted, typename Visit>
 void FrontierMap::for_each_approach(const OccupancyGrid& grid, const ChassisCells& chassis, int cx,
-                                    int cy, Visit&& visit) const noexcept {
-  for (const Offset& o : window_) {
-    const int x = cx + o.dx;
-    const int y = cy + o.dy;
-    if (!grid.in_bounds(x, y)) continue;
-    const std::uint32_t c = grid.index(x, y);
-    // The cell first (cheaper than its label): on blocks, a reached block's cells are not all
-    // chassis cells.
-    if (!approach_start(chassis, c)) continue;
-    const std::uint32_t reached = field_.cost_at(c);
-    if (reached == kUnreachable) continue;
-    visit(c, x, y, reached, reached + o.cost);
+                                    int cy, Wanted&& wanted, Visit&& visit) const noexcept {
+  // Every cell of a block reads the block's cost, and the straight cost grows with distance:
+  // the block's cell nearest (cx, cy) bounds what any of its cells could give.
+  const int b = field_.block();
+  const int x_lo = std::max(cx - reach_, 0);
+  const int x_hi = std::min(cx + reach_, width_ - 1);
+  const int y_lo = std::max(cy - reach_, 0);
+  const int y_hi = std::min(cy + reach_, height_ - 1);
+  for (int by0 = y_lo / b * b; by0 <= y_hi; by0 += b) {
+    const int y0 = std::max(by0, y_lo);
+    const int y1 = std::min(by0 + b - 1, y_hi);
+    const int near_y = std::clamp(cy, y0, y1);
+    for (int bx0 = x_lo / b * b; bx0 <= x_hi; bx0 += b) {
+      const int x0 = std::max(bx0, x_lo);
+      const int x1 = std::min(bx0 + b - 1, x_hi);
+      const int near_x = std::clamp(cx, x0, x1);
+      const std::uint32_t least = window_cost(near_x - cx, near_y - cy);
+      if (least == kUnreachable) continue;  // the whole block lies outside the disk
+      const std::uint32_t reached = field_.cost_at(grid.index(near_x, near_y));
+      if (reached == kUnreachable || !wanted(reached, least)) continue;
+      for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+          const std::uint32_t straight = window_cost(x - cx, y - cy);
+          if (straight == kUnreachable) continue;
+          const std::uint32_t c = grid.index(x, y);
+          // On blocks, a reached block's cells are not all chassis cells.
+          if (approach_start(chassis, c)) visit(x, y, reached + straight);
+        }
+      }
+    }
   }
 }
 
@@ -397,8 +418,8 @@ std::uint32_t FrontierMap::rho_lower_bound(const FrontierGroup& group, int robot
 bool FrontierMap::measure_group(const OccupancyGrid& grid, const ChassisCells& chassis,
                                 FrontierGroup& group, std::uint32_t settled) noexcept {
   // Per cell: the cheapest chassis cell in its window, in sight, among the cells settled.
-  // Candidates that cannot improve on the best so far skip the sight test, which is the only
-  // costly part.
+  // Candidates that cannot improve on the best so far skip the sight test, the costly part, and
+  // blocks none of whose cells could are not read.
   const auto w = static_cast<std::uint32_t>(width_);
   std::uint32_t best = kUnreachable;
   std::uint32_t nearest = FrontierGroup::kNoCell;
@@ -408,10 +429,11 @@ bool FrontierMap::measure_group(const OccupancyGrid& grid, const ChassisCells& c
     const int cy = static_cast<int>(c / w);
     for_each_approach(
         grid, chassis, cx, cy,
-        [&](std::uint32_t, int x, int y, std::uint32_t reached, std::uint32_t cost) {
-          if (cost >= best || reached > settled || !detail::in_sight(grid, x, y, cx, cy)) {
-            return;
-          }
+        [&](std::uint32_t reached, std::uint32_t least) {
+          return reached <= settled && reached + least < best;
+        },
+        [&](int x, int y, std::uint32_t cost) {
+          if (cost >= best || !detail::in_sight(grid, x, y, cx, cy)) return;
           best = cost;
           nearest = c;
         });

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grip/common/random.hpp"
+#include "grip/world/line_of_sight.hpp"
 
 namespace grip {
 namespace {
@@ -340,6 +341,78 @@ TEST(FrontierSearch, AWavefrontInStepsChoosesWhatOneOverAllTheKnownSpaceChooses)
   }
   EXPECT_GT(targets, 300);  // the maps gave both outcomes, many times
   EXPECT_GT(completes, 5);
+}
+
+TEST(FrontierSearch, AGroupsRhoIsItsCheapestApproachInSight) {
+  // GIVEN random known spaces and robots, the robot's wavefront on cells and (every other map)
+  // on blocks of 3 x 3 cells, run to the end
+  Random random(5);
+  int measured = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const OccupancyGrid grid = random_known_space(random);
+    const ClearanceMap clearance = ClearanceMap::create_for(grid).value();
+    int rx = 0;
+    int ry = 0;
+    do {
+      rx = static_cast<int>(random.below(120));
+      ry = static_cast<int>(random.below(80));
+    } while (grid.at(rx, ry) != Cell::kFree);
+    FrontierConfig config;
+    config.search_step_m = 0.0;
+    if (trial % 2 == 1) {
+      config.clearance_m = 0.6;
+      config.approach_range_m = 0.8;
+      config.rho_cell_m = 0.3;
+    }
+    FrontierMap frontiers = FrontierMap::create(120, 80, 0.1, config).value();
+    // WHEN it measures every group
+    frontiers.update(grid, clearance, grid.cell_center_x(rx), grid.cell_center_y(ry));
+    // THEN each group's rho is, by brute force over its cells and their approach windows, the
+    // least wavefront cost of a chassis cell (or the robot's own) in sight of the cell plus the
+    // straight line to it, given by its first cell that has it
+    const DistanceField& field = frontiers.robot_field();
+    ASSERT_EQ(field.block(), trial % 2 == 1 ? 3 : 1);
+    const std::uint32_t min_d2 = clearance.squared_cells_at_least(config.clearance_m);
+    const int reach = static_cast<int>(config.approach_range_m / 0.1) + 1;
+    const double reach_cells = config.approach_range_m / 0.1;
+    for (const FrontierGroup& group : frontiers.groups()) {
+      std::uint32_t best = DistanceField::kUnreachable;
+      std::uint32_t nearest = FrontierGroup::kNoCell;
+      for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
+        const std::uint32_t c = frontiers.frontier_cells()[i];
+        const int cx = grid.cell_x(c);
+        const int cy = grid.cell_y(c);
+        for (int y = cy - reach; y <= cy + reach; ++y) {
+          for (int x = cx - reach; x <= cx + reach; ++x) {
+            if (!grid.in_bounds(x, y) || std::hypot(x - cx, y - cy) > reach_cells) continue;
+            const std::uint32_t a = grid.index(x, y);
+            const bool chassis =
+                grid.at(x, y) == Cell::kFree && clearance.squared_cells()[a] >= min_d2;
+            if (!(chassis || (x == rx && y == ry)) || !field.reachable(a) ||
+                !cell_visible(grid, grid.cell_center_x(x), grid.cell_center_y(y), cx, cy, 1.0)) {
+              continue;
+            }
+            const auto straight = static_cast<std::uint32_t>(
+                std::lround(std::hypot(x - cx, y - cy) * DistanceField::kCostUnitsPerCell));
+            if (field.cost_at(a) + straight < best) {
+              best = field.cost_at(a) + straight;
+              nearest = c;
+            }
+          }
+        }
+      }
+      ASSERT_TRUE(group.searched);
+      EXPECT_EQ(group.nearest_cell, nearest) << "trial " << trial;
+      if (best == DistanceField::kUnreachable) {
+        EXPECT_FALSE(group.reachable()) << "trial " << trial;
+      } else {
+        EXPECT_EQ(group.rho_m, best * (0.1 / DistanceField::kCostUnitsPerCell))
+            << "trial " << trial;
+        ++measured;
+      }
+    }
+  }
+  EXPECT_GT(measured, 300);  // many groups were reachable
 }
 
 TEST(FrontierSearch, OnBlocksTheStraightLineBoundAllowsForABlocksDiagonal) {

@@ -229,12 +229,21 @@ class FrontierMap {
   bool approach_start(const ChassisCells& chassis, std::uint32_t c) const noexcept {
     return chassis.contains(c) || c == seeds_[0];
   }
-  // Calls visit(cell, x, y, its cost, the cost via it) for every approach start the wavefront
-  // reached within the approach window of (cx, cy); the caller tests sight (only when the cost
-  // could matter).
-  template <typename Visit>
+  // Calls visit(x, y, the cost via it) for every approach start (x, y) the wavefront
+  // reached within the approach window of (cx, cy), a block of the wavefront at a time: a block
+  // is read only when wanted(its cost, the least straight cost from (cx, cy) to one of its cells)
+  // says one of its cells could matter. The caller tests sight.
+  template <typename Wanted, typename Visit>
   void for_each_approach(const OccupancyGrid& grid, const ChassisCells& chassis, int cx, int cy,
-                         Visit&& visit) const noexcept;
+                         Wanted&& wanted, Visit&& visit) const noexcept;
+  // [cost units] The straight cost of window offset (dx, dy), kUnreachable outside the disk.
+  std::uint32_t window_cost(int dx, int dy) const noexcept {
+    return window_costs_[window_index(dx, dy)];
+  }
+  std::size_t window_index(int dx, int dy) const noexcept {
+    const auto side = static_cast<std::size_t>(2 * reach_ + 1);
+    return static_cast<std::size_t>(dy + reach_) * side + static_cast<std::size_t>(dx + reach_);
+  }
 
   int width_;
   int height_;
@@ -242,6 +251,8 @@ class FrontierMap {
   FrontierConfig config_;
   DistanceField field_;
   std::vector<Offset> window_;                // the approach disk, nearest offsets first
+  int reach_ = 0;                             // its half side [cells]
+  std::vector<std::uint32_t> window_costs_;   // the same as a square (see window_cost())
   std::vector<std::uint64_t> frontier_bits_;  // per cell: a frontier cell (row-major bits)
   bool detected_ = false;                     // frontier_bits_ hold the last update's grid
   CellBox frontier_rows_;                     // rows that have held a frontier cell (x unused)
