@@ -347,11 +347,8 @@ void FrontierMap::group(const OccupancyGrid& grid) noexcept {
   });
 }
 
-template <typename Wanted, typename Visit>
-void FrontierMap::for_each_approach(const OccupancyGrid& grid, const ChassisCells& chassis, int cx,
-                                    int cy, Wanted&& wanted, Visit&& visit) const noexcept {
-  // Every cell of a block reads the block's cost, and the straight cost grows with distance:
-  // the block's cell nearest (cx, cy) bounds what any of its cells could give.
+template <typename Visit>
+void FrontierMap::for_each_window_block(int cx, int cy, Visit&& visit) const noexcept {
   const int b = field_.block();
   const int x_lo = std::max(cx - reach_, 0);
   const int x_hi = std::min(cx + reach_, width_ - 1);
@@ -366,20 +363,28 @@ void FrontierMap::for_each_approach(const OccupancyGrid& grid, const ChassisCell
       const int x1 = std::min(bx0 + b - 1, x_hi);
       const int near_x = std::clamp(cx, x0, x1);
       const std::uint32_t least = window_cost(near_x - cx, near_y - cy);
-      if (least == kUnreachable) continue;  // the whole block lies outside the disk
-      const std::uint32_t reached = field_.cost_at(grid.index(near_x, near_y));
-      if (reached == kUnreachable || !wanted(reached, least)) continue;
-      for (int y = y0; y <= y1; ++y) {
-        for (int x = x0; x <= x1; ++x) {
-          const std::uint32_t straight = window_cost(x - cx, y - cy);
-          if (straight == kUnreachable) continue;
-          const std::uint32_t c = grid.index(x, y);
-          // On blocks, a reached block's cells are not all chassis cells.
-          if (approach_start(chassis, c)) visit(x, y, reached + straight);
-        }
-      }
+      if (least != kUnreachable) visit(x0, y0, x1, y1, near_x, near_y, least);
     }
   }
+}
+
+template <typename Wanted, typename Visit>
+void FrontierMap::for_each_approach(const OccupancyGrid& grid, const ChassisCells& chassis, int cx,
+                                    int cy, Wanted&& wanted, Visit&& visit) const noexcept {
+  for_each_window_block(
+      cx, cy, [&](int x0, int y0, int x1, int y1, int near_x, int near_y, std::uint32_t least) {
+        const std::uint32_t reached = field_.cost_at(grid.index(near_x, near_y));
+        if (reached == kUnreachable || !wanted(reached, least)) return;
+        for (int y = y0; y <= y1; ++y) {
+          for (int x = x0; x <= x1; ++x) {
+            const std::uint32_t straight = window_cost(x - cx, y - cy);
+            // On blocks, a reached block's cells are not all chassis cells.
+            if (straight != kUnreachable && approach_start(chassis, grid.index(x, y))) {
+              visit(x, y, reached + straight);
+            }
+          }
+        }
+      });
 }
 
 void FrontierMap::seed_robot_field(const OccupancyGrid& grid, const ChassisCells& chassis,
@@ -480,22 +485,30 @@ void FrontierMap::collect_approach_cells(const OccupancyGrid& grid, const Chassi
   // The window cells in sight that the wavefront reached, or may still reach (traversable, not
   // labelled yet: it stopped at the target's score).
   const auto w = static_cast<std::uint32_t>(width_);
+  const int robot_x = static_cast<int>(seeds_[0] % w);
+  const int robot_y = static_cast<int>(seeds_[0] / w);
   for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
     const std::uint32_t c = cells_[i];
     const int cx = static_cast<int>(c % w);
     const int cy = static_cast<int>(c / w);
-    for (const Offset& o : window_) {
-      const int x = cx + o.dx;
-      const int y = cy + o.dy;
-      if (!grid.in_bounds(x, y)) continue;
-      const std::uint32_t a = grid.index(x, y);
-      if (stamp_[a] == generation_ || !approach_start(chassis, a) ||
-          !detail::in_sight(grid, x, y, cx, cy)) {
-        continue;
-      }
-      stamp_[a] = generation_;
-      GRIP_ASSERT(approach_.push_back(a));  // each cell once: at most the grid
-    }
+    // A block holds a chassis cell exactly when it is traversable (the same rule); the robot's
+    // cell is one of the approach's starts too.
+    for_each_window_block(
+        cx, cy, [&](int x0, int y0, int x1, int y1, int near_x, int near_y, std::uint32_t) {
+          const bool holds_robot = robot_x >= x0 && robot_x <= x1 && robot_y >= y0 && robot_y <= y1;
+          if (!holds_robot && !field_.traversable(grid.index(near_x, near_y))) return;
+          for (int y = y0; y <= y1; ++y) {
+            for (int x = x0; x <= x1; ++x) {
+              const std::uint32_t a = grid.index(x, y);
+              if (window_cost(x - cx, y - cy) == kUnreachable || stamp_[a] == generation_ ||
+                  !approach_start(chassis, a) || !detail::in_sight(grid, x, y, cx, cy)) {
+                continue;
+              }
+              stamp_[a] = generation_;
+              GRIP_ASSERT(approach_.push_back(a));  // each cell once: at most the grid
+            }
+          }
+        });
   }
   // On until each is labelled (a label, final or not, means reached) or the wavefront ends.
   const auto unlabelled = [this](std::uint32_t a) { return !field_.reachable(a); };

@@ -229,10 +229,17 @@ class FrontierMap {
   bool approach_start(const ChassisCells& chassis, std::uint32_t c) const noexcept {
     return chassis.contains(c) || c == seeds_[0];
   }
-  // Calls visit(x, y, the cost via it) for every approach start (x, y) the wavefront
-  // reached within the approach window of (cx, cy), a block of the wavefront at a time: a block
-  // is read only when wanted(its cost, the least straight cost from (cx, cy) to one of its cells)
-  // says one of its cells could matter. The caller tests sight.
+  // Calls visit(x0, y0, x1, y1, nx, ny, least) for every block of the robot's wavefront that
+  // holds a cell of the approach window of (cx, cy): [x0, x1] x [y0, y1] are the block's cells
+  // within the window's square, (nx, ny) the one nearest (cx, cy) and `least` its straight cost
+  // (blocks wholly outside the window's disk are not visited). Every cell of a block reads the
+  // block's wavefront cost and traversability, and the straight cost grows with distance: a
+  // block's nearest cell decides whether any of its cells could matter.
+  template <typename Visit>
+  void for_each_window_block(int cx, int cy, Visit&& visit) const noexcept;
+  // Calls visit(x, y, the cost via it) for every approach start (x, y) the wavefront reached
+  // within the approach window of (cx, cy), of the blocks for which wanted(the block's cost,
+  // least) holds. The caller tests sight.
   template <typename Wanted, typename Visit>
   void for_each_approach(const OccupancyGrid& grid, const ChassisCells& chassis, int cx, int cy,
                          Wanted&& wanted, Visit&& visit) const noexcept;
