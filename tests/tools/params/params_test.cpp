@@ -58,7 +58,7 @@ GripParams all_changed(VehicleKind kind) {
   p.planner.cycle_s = 0.1;
   p.planner.budget_s = 1.0 / 30.0;
   p.planner.margin_s = 0.001234;
-  p.planner.tuning = {1.0000123456789, 0.7, 3.3};
+  p.planner.tuning = {1.0000123456789, 0.7, 3.3, 0.25, 0.05};
   p.planner.max_edges = 12345;
   p.planner.lockstep_edges = 777;
   p.planner.max_map_cells = 1U << 20;
@@ -201,6 +201,18 @@ TEST(ParamsValidate, ASetBuiltInCodeIsRefusedByTheKeyOfItsFirstValueOutOfRange) 
   p.exploration.frontier.size_weight = -1.0;
   EXPECT_TRUE(message_for(p).starts_with("exploration.frontier.size_weight must be"))
       << message_for(p);
+
+  // rho's clearance is the frontiers' too: the approach range must reach past it.
+  p = default_params(VehicleKind::kDdVelocity);
+  p.planner.tuning.rho_clearance_m = 0.6;
+  EXPECT_TRUE(message_for(p).starts_with("exploration.frontier.approach_range_m must be"))
+      << message_for(p);
+  p.exploration.frontier.approach_range_m = 0.8;
+  EXPECT_TRUE(grip::params::validate(p).ok()) << message_for(p);
+
+  p = default_params(VehicleKind::kDdVelocity);
+  p.planner.tuning.rho_cell_m = -0.1;
+  EXPECT_TRUE(message_for(p).starts_with("planner.rho_cell_m must be")) << message_for(p);
 
   p = default_params(VehicleKind::kDdVelocity);
   p.sensor.rays = 8;

@@ -77,7 +77,8 @@ void check_planner(const PlannerParams& p, Rules& r) {
             "in [1, " + std::to_string(OccupancyGrid::kMaxCells) + "]");
 }
 
-void check_exploration(const SensorParams& s, const ExplorationParams& e, Rules& r) {
+void check_exploration(const SensorParams& s, const ExplorationParams& e, const GripTuning& tuning,
+                       Rules& r) {
   r.require(finite_non_negative(s.range_m), s.range_m, "finite and >= 0 (0: auto)");
   r.require(s.rays == 0 || (s.rays >= 16 && s.rays <= 100'000), s.rays,
             "auto (0) or in [16, 100000]");
@@ -85,7 +86,11 @@ void check_exploration(const SensorParams& s, const ExplorationParams& e, Rules&
             "finite and >= 0 (0: auto)");
   // The map's resolution is not known here: FrontierMap::create checks the approach range
   // against clearance_m plus a cell's diagonal once it is; this is that check for a cell of 0.
-  r.require(e.frontier.validate(0.0), "frontier: ", "exploration.frontier");
+  // Frontiers are approached from the cells rho traverses (rt/exploration_driver.hpp).
+  FrontierConfig frontier = e.frontier;
+  frontier.clearance_m = tuning.rho_clearance_m;
+  frontier.rho_cell_m = tuning.rho_cell_m;
+  r.require(frontier.validate(0.0), "frontier: ", "exploration.frontier");
   r.require(finite_positive(e.give_up_s), e.give_up_s, "finite and > 0");
   r.require(e.target_refresh_cycles >= 1, e.target_refresh_cycles, "at least 1");
   r.require(finite_positive(e.stuck_after_s), e.stuck_after_s, "finite and > 0");
@@ -111,7 +116,7 @@ std::optional<RangeError> first_range_error(const GripParams& params) {
   const std::string model = std::string(vehicle_name(vehicle_kind(params.vehicle))) + ".";
   rules.require(grip::validate(params.vehicle), model, "vehicle");
   check_planner(params.planner, rules);
-  check_exploration(params.sensor, params.exploration, rules);
+  check_exploration(params.sensor, params.exploration, params.planner.tuning, rules);
   check_link_and_runtime(params.link, params.runtime, rules);
   return std::move(rules).result();
 }

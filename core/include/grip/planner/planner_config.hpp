@@ -103,11 +103,16 @@ struct GripTuning {
   double score_base_a = PlannerConfig{}.score_base_a;
   double min_plan_duration_s = PlannerConfig{}.min_plan_duration_s;
   double max_plan_duration_s = PlannerConfig{}.max_plan_duration_s;
+  // rho's space and grain: what a chassis and a map of another size need.
+  double rho_clearance_m = PlannerConfig{}.rho_clearance_m;
+  double rho_cell_m = PlannerConfig{}.rho_cell_m;
 
   void apply_to(PlannerConfig& config) const noexcept {
     config.score_base_a = score_base_a;
     config.min_plan_duration_s = min_plan_duration_s;
     config.max_plan_duration_s = max_plan_duration_s;
+    config.rho_clearance_m = rho_clearance_m;
+    config.rho_cell_m = rho_cell_m;
   }
   bool operator==(const GripTuning&) const = default;
 };

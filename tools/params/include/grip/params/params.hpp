@@ -41,8 +41,8 @@ struct SensorParams {
 
 struct ExplorationParams {
   double sensing_radius_m = 0.0;  // d_max of the path weight; 0: "auto", sensor.range_m
-  // Grouping and scoring of frontier cells; clearance_m and rho_cell_m are the planner's and
-  // not parameters.
+  // Grouping and scoring of frontier cells; clearance_m and rho_cell_m are the planner's
+  // (planner.rho_clearance_m, planner.rho_cell_m) and not parameters here.
   FrontierConfig frontier;
   double give_up_s = 60.0;  // a frontier target not approached for this long is given up
   std::uint32_t target_refresh_cycles = 5;
