@@ -204,9 +204,7 @@ ExplorationStatus FrontierMap::update(const OccupancyGrid& grid, const Clearance
     status_ = ExplorationStatus::kRobotOutsideGrid;
     return status_;
   }
-  const std::uint32_t min_d2 = clearance.squared_cells_at_least(config_.clearance_m);
-  const ChassisCells chassis{grid.cells().data(),
-                             min_d2 == 0 ? nullptr : clearance.squared_cells().data(), min_d2};
+  const ChassisCells chassis = clearance.clear_cells(grid, config_.clearance_m);
   group(grid);
   seed_robot_field(grid, chassis, robot_cx, robot_cy);
   choose_target(grid, chassis, reached);

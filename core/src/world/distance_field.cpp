@@ -127,10 +127,9 @@ Result<DistanceField> DistanceField::create(int width_cells, int height_cells, d
           detail::check_grid_size("DistanceField", width_cells, height_cells, resolution_m)) {
     return *std::move(error);
   }
-  if (block < 1 || block > OccupancyGrid::kMaxSideCells) {
-    return invalid_argument("DistanceField: block must be in [1, " +
-                            std::to_string(OccupancyGrid::kMaxSideCells) + "] (got " +
-                            std::to_string(block) + ")");
+  if (block < 1 || block > kMaxBlock) {
+    return invalid_argument("DistanceField: block must be in [1, " + std::to_string(kMaxBlock) +
+                            "] (got " + std::to_string(block) + ")");
   }
   return DistanceField(width_cells, height_cells, resolution_m, block);
 }
@@ -140,7 +139,7 @@ int DistanceField::block_for(double resolution_m, double max_cell_m, double infl
   if (!(side_m > 0.0 && resolution_m > 0.0)) return 1;
   // A hair of tolerance: 0.1 m on a 0.05 m grid is two cells, whatever the rounding.
   const double cells = std::floor(side_m / resolution_m * (1.0 + 1e-9));
-  return cells >= 2.0 ? static_cast<int>(std::min(cells, 1024.0)) : 1;
+  return cells >= 2.0 ? static_cast<int>(std::min(cells, static_cast<double>(kMaxBlock))) : 1;
 }
 
 std::uint32_t DistanceField::unpadded(std::uint32_t padded_index) const noexcept {
@@ -157,16 +156,12 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
   GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
               grid.resolution() == resolution_);
   GRIP_ASSERT(std::isfinite(inflation_m) && inflation_m >= 0.0);
-  const std::span<const Cell> cells = grid.cells();
-  const std::uint32_t min_d2 =
-      clearance != nullptr ? clearance->squared_cells_at_least(inflation_m) : 0;
+  const ClearCells traversable = clearance != nullptr ? clearance->clear_cells(grid, inflation_m)
+                                                      : ClearCells::free_cells(grid);
   // A clearance map updated in windows is exact only up to its bound (ClearanceMap::update).
-  GRIP_ASSERT(clearance == nullptr || min_d2 <= clearance->exact_up_to());
-  const std::uint32_t* d2 = min_d2 == 0 ? nullptr : clearance->squared_cells().data();
-  const auto gw = static_cast<std::size_t>(width_);
-  const auto traversable = [&](std::size_t i) {
-    return cells[i] == Cell::kFree && (d2 == nullptr || d2[i] >= min_d2);
-  };
+  GRIP_ASSERT(clearance == nullptr ||
+              traversable.min_squared_clearance <= clearance->exact_up_to());
+  const auto gw = static_cast<std::uint32_t>(width_);
   // The blocks that hold a cell of the window, each decided from all of its cells.
   const int b = block_;
   const CellBox box{std::max(window.x0, 0) / b, std::max(window.y0, 0) / b,
@@ -178,9 +173,9 @@ void DistanceField::build_mask(const OccupancyGrid& grid, const ClearanceMap* cl
       const int x_end = std::min((column + 1) * b, width_);
       bool any = false;
       for (int y = row * b; y < y_end && !any; ++y) {
-        const std::size_t first = static_cast<std::size_t>(y) * gw;
+        const std::uint32_t first = static_cast<std::uint32_t>(y) * gw;
         for (int x = column * b; x < x_end && !any; ++x) {
-          any = traversable(first + static_cast<std::size_t>(x));
+          any = traversable.contains(first + static_cast<std::uint32_t>(x));
         }
       }
       out[column] = any ? 1 : 0;

@@ -458,10 +458,16 @@ std::vector<bool> traversable_cells(const OccupancyGrid& grid, double inflation)
   return out;
 }
 
-TEST(DistanceFieldBlocksTest, CreateRejectsABlockBelowOneNamingIt) {
-  const auto bad = DistanceField::create(10, 10, 0.1, 0);
-  ASSERT_FALSE(bad.ok());
-  EXPECT_NE(bad.error().message.find("block"), std::string::npos);
+TEST(DistanceFieldBlocksTest, CreateRejectsABlockOutsideItsRangeNamingIt) {
+  for (const int block : {0, DistanceField::kMaxBlock + 1}) {
+    const auto bad = DistanceField::create(10, 10, 0.1, block);
+    ASSERT_FALSE(bad.ok()) << block;
+    EXPECT_NE(bad.error().message.find("block must be in [1, 1024] (got " + std::to_string(block)),
+              std::string::npos)
+        << bad.error().message;
+  }
+  EXPECT_TRUE(DistanceField::create(10, 10, 0.1, DistanceField::kMaxBlock).ok());
+  EXPECT_EQ(DistanceField::block_for(0.001, 2.0, 4.0), DistanceField::kMaxBlock);
 }
 
 TEST(DistanceFieldBlocksTest, BlockForKeepsBlocksWithinTheCellSizeAndHalfTheInflation) {

@@ -187,15 +187,7 @@ class FrontierMap {
 
   // The chassis cells (kFree, clearance >= clearance_m) of an update()'s grid and clearance
   // map, read cell by cell: the robot's wavefront may run on blocks.
-  struct ChassisCells {
-    const Cell* cells;
-    const std::uint32_t* squared_clearance;  // nullptr: every free cell (clearance_m 0)
-    std::uint32_t min_squared_clearance;
-    bool contains(std::uint32_t c) const noexcept {
-      return cells[c] == Cell::kFree &&
-             (squared_clearance == nullptr || squared_clearance[c] >= min_squared_clearance);
-    }
-  };
+  using ChassisCells = ClearCells;
 
   FrontierMap(int width_cells, int height_cells, double resolution_m, const FrontierConfig& config,
               DistanceField field);

@@ -24,6 +24,24 @@
 
 namespace grip {
 
+// The cells where a point (a chassis' reference point) has at least a given clearance: kFree,
+// and with a clearance > 0, d2 at least ClearanceMap::squared_cells_at_least of it. The one
+// statement of that rule, read cell by cell in the wavefronts' loops (ClearanceMap::clear_cells).
+struct ClearCells {
+  const Cell* cells = nullptr;
+  const std::uint32_t* squared_clearance = nullptr;  // nullptr: every free cell
+  std::uint32_t min_squared_clearance = 0;
+
+  // Every free cell of the grid (no clearance asked).
+  static ClearCells free_cells(const OccupancyGrid& grid) noexcept {
+    return ClearCells{grid.cells().data(), nullptr, 0};
+  }
+  bool contains(std::uint32_t c) const noexcept {
+    return cells[c] == Cell::kFree &&
+           (squared_clearance == nullptr || squared_clearance[c] >= min_squared_clearance);
+  }
+};
+
 class ClearanceMap {
  public:
   // Allocates every buffer; errors as for OccupancyGrid::create. compute() must run before use.
@@ -71,6 +89,12 @@ class ClearanceMap {
   // relative 1e-12 rounded towards requiring more). 0 for min_clearance_m <= 0 (every cell,
   // including non-free ones: callers test freedom separately).
   std::uint32_t squared_cells_at_least(double min_clearance_m) const noexcept;
+  // The cells of `grid` (the one this map was computed from) with at least this clearance.
+  ClearCells clear_cells(const OccupancyGrid& grid, double min_clearance_m) const noexcept {
+    const std::uint32_t min_d2 = squared_cells_at_least(min_clearance_m);
+    return min_d2 == 0 ? ClearCells::free_cells(grid)
+                       : ClearCells{grid.cells().data(), d2_.data(), min_d2};
+  }
 
  private:
   ClearanceMap(int width_cells, int height_cells, double resolution_m);

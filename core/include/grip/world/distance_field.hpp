@@ -56,15 +56,17 @@ class DistanceField {
   static constexpr std::uint32_t kCostUnitsPerCell = kOrthogonalCost;
   static constexpr std::uint32_t kUnreachable = std::numeric_limits<std::uint32_t>::max();
   static constexpr std::uint32_t kNoCell = std::numeric_limits<std::uint32_t>::max();
+  // The largest block: the bucket queue holds a power of two above a diagonal step (99 b).
+  static constexpr int kMaxBlock = 1024;
 
   // Allocates every buffer for grids of exactly this size and resolution, the wavefront over
   // blocks of block x block of their cells (1: the cells themselves); errors as for
-  // OccupancyGrid::create, and for a block outside [1, OccupancyGrid::kMaxSideCells].
+  // OccupancyGrid::create, and for a block outside [1, kMaxBlock].
   static Result<DistanceField> create(int width_cells, int height_cells, double resolution_m,
                                       int block = 1);
   // The block for a field on a grid of resolution_m with this inflation: the largest whose side
-  // is at most max_cell_m and half the inflation (1 when none is: inflation 0, or cells already
-  // that large).
+  // is at most max_cell_m and half the inflation, and at most kMaxBlock (1 when none is:
+  // inflation 0, or cells already that large).
   static int block_for(double resolution_m, double max_cell_m, double inflation_m) noexcept;
 
   // Builds the traversable set from the grid, every free cell traversable (no inflation), and
@@ -210,7 +212,7 @@ class DistanceField {
     std::uint32_t y1 = 0;
   };
   ReachedBox reached_;
-  std::uint32_t settled_ = 0;  // cells the wavefront has settled
+  std::uint32_t settled_ = 0;  // blocks the wavefront has settled
   std::uint32_t settled_limit_ = kUnreachable;
   Search field_;  // the wavefront's labels are the field
 };
