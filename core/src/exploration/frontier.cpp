@@ -116,15 +116,10 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
     for (int dx = -reach_; dx <= reach_; ++dx) {
       const double d = std::hypot(dx, dy);
       if (d > reach_cells) continue;
-      const auto cost =
+      window_costs_[window_index(dx, dy)] =
           static_cast<std::uint32_t>(std::lround(d * DistanceField::kCostUnitsPerCell));
-      window_.push_back(Offset{dx, dy, cost});
-      window_costs_[window_index(dx, dy)] = cost;
     }
   }
-  // Nearest first: the first acceptable cell of equal wavefront cost is the closest one.
-  std::stable_sort(window_.begin(), window_.end(),
-                   [](const Offset& a, const Offset& b) { return a.cost < b.cost; });
   for (std::uint32_t c = 0; c < field_.cell_count(); ++c) {
     GRIP_ASSERT(label_.push_back(kUnlabelled));
     GRIP_ASSERT(stamp_.push_back(0));
@@ -389,13 +384,17 @@ void FrontierMap::seed_robot_field(const OccupancyGrid& grid, const ChassisCells
                                    int robot_cx, int robot_cy) noexcept {
   seeds_.clear();
   GRIP_ASSERT(seeds_.push_back(grid.index(robot_cx, robot_cy)));
-  for (const Offset& o : window_) {
-    const int x = robot_cx + o.dx;
-    const int y = robot_cy + o.dy;
-    if (o.cost == 0 || !grid.in_bounds(x, y)) continue;
-    const std::uint32_t c = grid.index(x, y);
-    if (chassis.contains(c) && detail::in_sight(grid, robot_cx, robot_cy, x, y)) {
-      GRIP_ASSERT(seeds_.push_back(c));  // at most the window's size, < cells
+  for (int y = std::max(robot_cy - reach_, 0); y <= std::min(robot_cy + reach_, height_ - 1); ++y) {
+    for (int x = std::max(robot_cx - reach_, 0); x <= std::min(robot_cx + reach_, width_ - 1);
+         ++x) {
+      if ((x == robot_cx && y == robot_cy) ||
+          window_cost(x - robot_cx, y - robot_cy) == kUnreachable) {
+        continue;
+      }
+      const std::uint32_t c = grid.index(x, y);
+      if (chassis.contains(c) && detail::in_sight(grid, robot_cx, robot_cy, x, y)) {
+        GRIP_ASSERT(seeds_.push_back(c));  // at most the window's size, < cells
+      }
     }
   }
 }

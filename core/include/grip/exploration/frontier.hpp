@@ -179,12 +179,6 @@ class FrontierMap {
   const FrontierConfig& config() const noexcept { return config_; }
 
  private:
-  struct Offset {
-    int dx;
-    int dy;
-    std::uint32_t cost;  // straight distance in DistanceField cost units (resolution / 70)
-  };
-
   // The chassis cells (kFree, clearance >= clearance_m) of an update()'s grid and clearance
   // map, read cell by cell: the robot's wavefront may run on blocks.
   using ChassisCells = ClearCells;
@@ -249,9 +243,8 @@ class FrontierMap {
   double resolution_;
   FrontierConfig config_;
   DistanceField field_;
-  std::vector<Offset> window_;                // the approach disk, nearest offsets first
-  int reach_ = 0;                             // its half side [cells]
-  std::vector<std::uint32_t> window_costs_;   // the same as a square (see window_cost())
+  int reach_ = 0;                             // the approach window's half side [cells]
+  std::vector<std::uint32_t> window_costs_;   // its disk in a square (see window_cost())
   std::vector<std::uint64_t> frontier_bits_;  // per cell: a frontier cell (row-major bits)
   bool detected_ = false;                     // frontier_bits_ hold the last update's grid
   CellBox frontier_rows_;                     // rows that have held a frontier cell (x unused)
