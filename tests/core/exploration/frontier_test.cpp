@@ -280,6 +280,13 @@ OccupancyGrid random_known_space(Random& random) {
   return grid;
 }
 
+// The robot's wavefront on blocks of 3 x 3 cells of 0.1 m, which a clearance of 0.6 m allows.
+void on_blocks_of_3(FrontierConfig& config) {
+  config.clearance_m = 0.6;
+  config.approach_range_m = 0.8;
+  config.rho_cell_m = 0.3;
+}
+
 TEST(FrontierSearch, AWavefrontInStepsChoosesWhatOneOverAllTheKnownSpaceChooses) {
   // GIVEN random known spaces and robots, and frontier maps whose robot wavefront runs in
   // steps of 0.2 m, 0.7 m and the default length, beside one that runs over everything at once
@@ -303,11 +310,7 @@ TEST(FrontierSearch, AWavefrontInStepsChoosesWhatOneOverAllTheKnownSpaceChooses)
       FrontierConfig config;
       config.search_step_m = step;
       config.size_weight = size_weight;
-      if (trial % 4 == 3) {
-        config.clearance_m = 0.6;
-        config.approach_range_m = 0.8;
-        config.rho_cell_m = 0.3;
-      }
+      if (trial % 4 == 3) on_blocks_of_3(config);
       maps.push_back(FrontierMap::create(120, 80, 0.1, config).value());
     }
     // WHEN each chooses, then again after giving up what the exact one chose, three times
@@ -359,11 +362,7 @@ TEST(FrontierSearch, AGroupsRhoIsItsCheapestApproachInSight) {
     } while (grid.at(rx, ry) != Cell::kFree);
     FrontierConfig config;
     config.search_step_m = 0.0;
-    if (trial % 2 == 1) {
-      config.clearance_m = 0.6;
-      config.approach_range_m = 0.8;
-      config.rho_cell_m = 0.3;
-    }
+    if (trial % 2 == 1) on_blocks_of_3(config);
     FrontierMap frontiers = FrontierMap::create(120, 80, 0.1, config).value();
     // WHEN it measures every group
     frontiers.update(grid, clearance, grid.cell_center_x(rx), grid.cell_center_y(ry));
