@@ -26,7 +26,12 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
   auto selector = PathSelector::create(grid.width(), grid.height(), grid.resolution(),
                                        planner.max_edges, selection);
   if (!selector) return selector.error();
-  return ExplorationDriver(config, std::move(target).value(), std::move(selector).value());
+  auto sight = selector->create_sight();
+  if (!sight) return sight.error();
+  auto chosen_sight = selector->create_sight();
+  if (!chosen_sight) return chosen_sight.error();
+  return ExplorationDriver(config, std::move(target).value(), std::move(chosen_sight).value(),
+                           std::move(selector).value(), std::move(sight).value());
 }
 
 template <VehicleModel V>
@@ -34,11 +39,13 @@ ExplorationDriver<V>::ExplorationDriver(ExplorationDriver&& other) noexcept
     : config_(other.config_),
       stage_(other.stage_.load(std::memory_order_acquire)),
       target_(std::move(other.target_)),
+      chosen_sight_(std::move(other.chosen_sight_)),
       robot_x_m_(other.robot_x_m_),
       robot_y_m_(other.robot_y_m_),
       robot_theta_(other.robot_theta_),
       robot_ns_(other.robot_ns_),
       selector_(std::move(other.selector_)),
+      sight_(std::move(other.sight_)),
       requested_(other.requested_),
       cycles_since_request_(other.cycles_since_request_),
       written_since_request_(other.written_since_request_),
@@ -55,16 +62,20 @@ bool ExplorationDriver<V>::update(ReplanningCycle<V>& cycle, const OccupancyGrid
                                   std::uint64_t plan_start_ns, const MapChanges& changes,
                                   bool lockstep) noexcept {
   written_since_request_.add(changes.written);
-  if (lockstep) {
-    if (requested_ && ++cycles_since_request_ < config_.refresh_cycles) return false;
-    choose_now(cycle, grid, plan_start_ns);
-    return false;
+  std::uint8_t stage = stage_.load(std::memory_order_acquire);
+  if (lockstep && stage != kIdle) {
+    static_cast<void>(serve_request());  // not begun by the target thread: chosen here
+    while ((stage = stage_.load(std::memory_order_acquire)) == kChoosing) {
+      stage_.wait(kChoosing, std::memory_order_acquire);
+    }
   }
-  const std::uint8_t stage = stage_.load(std::memory_order_acquire);
+  if (requested_) ++cycles_since_request_;
   if (stage == kChosen) {
-    take_over(cycle, grid);
+    take_over(cycle);
+    stage = kIdle;
     stage_.store(kIdle, std::memory_order_release);
-  } else if (stage == kIdle && (!requested_ || ++cycles_since_request_ >= config_.refresh_cycles)) {
+  }
+  if (stage == kIdle && (!requested_ || cycles_since_request_ >= config_.refresh_cycles)) {
     request(cycle, grid, plan_start_ns);
     stage_.store(kRequested, std::memory_order_release);
     return true;
@@ -76,25 +87,39 @@ template <VehicleModel V>
 void ExplorationDriver<V>::choose_now(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
                                       std::uint64_t plan_start_ns) noexcept {
   request(cycle, grid, plan_start_ns);
-  target_.choose(robot_x_m_, robot_y_m_, robot_theta_, robot_ns_);
-  take_over(cycle, grid);
+  choose();
+  take_over(cycle);
 }
 
 template <VehicleModel V>
 bool ExplorationDriver<V>::serve_request() noexcept {
-  if (stage_.load(std::memory_order_acquire) != kRequested) return false;
-  target_.choose(robot_x_m_, robot_y_m_, robot_theta_, robot_ns_);
+  std::uint8_t requested = kRequested;
+  if (!stage_.compare_exchange_strong(requested, kChoosing, std::memory_order_acquire)) {
+    return false;
+  }
+  choose();
   stage_.store(kChosen, std::memory_order_release);
+  stage_.notify_one();  // a lockstep planning thread may wait for it
   return true;
+}
+
+// The thread that owns target_ (kChoosing, or kIdle in choose_now): the target, and what sees it
+// on the map it was chosen on.
+template <VehicleModel V>
+void ExplorationDriver<V>::choose() noexcept {
+  target_.choose(robot_x_m_, robot_y_m_, robot_theta_, robot_ns_);
+  if (target_.status() == ExplorationStatus::kTarget) {
+    chosen_sight_.set_target(target_.map(), target_.target_cells());
+  }
 }
 
 template <VehicleModel V>
 TreeState ExplorationDriver<V>::choose_plan_end(const Planner<V>& planner,
                                                 std::uint32_t cycle_steps) noexcept {
-  return explored_ ? planner.root_state() : selector_.select(planner, cycle_steps).state;
+  return explored_ ? planner.root_state() : selector_.select(planner, sight_, cycle_steps).state;
 }
 
-// The planning thread, with target_ its own (kIdle, or lockstep).
+// The planning thread, with target_ its own (kIdle).
 template <VehicleModel V>
 void ExplorationDriver<V>::request(const ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
                                    std::uint64_t plan_start_ns) noexcept {
@@ -108,10 +133,9 @@ void ExplorationDriver<V>::request(const ReplanningCycle<V>& cycle, const Occupa
   robot_ns_ = static_cast<std::int64_t>(plan_start_ns);
 }
 
-// The planning thread, with target_ its own (kChosen, or lockstep).
+// The planning thread, with target_ its own (kChosen, or kIdle in choose_now).
 template <VehicleModel V>
-void ExplorationDriver<V>::take_over(ReplanningCycle<V>& cycle,
-                                     const OccupancyGrid& grid) noexcept {
+void ExplorationDriver<V>::take_over(ReplanningCycle<V>& cycle) noexcept {
   groups_ = target_.groups();
   groups_given_up_ = target_.given_up_groups();
   groups_unreachable_ = target_.unreachable_groups();
@@ -128,7 +152,7 @@ void ExplorationDriver<V>::take_over(ReplanningCycle<V>& cycle,
   target_x_m_ = target_.target_x_m();
   target_y_m_ = target_.target_y_m();
   cycle.set_goal(Goal::cells(target_.approach_cells()), &target_.rho());
-  selector_.set_target(grid, target_.target_cells());
+  std::swap(sight_, chosen_sight_);
 }
 
 template class ExplorationDriver<DdVelocity>;

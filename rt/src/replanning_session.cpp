@@ -52,10 +52,10 @@ Status ReplanningSession<V>::create_cycle(double time_scale, bool lockstep, bool
     // 1 us per pool edge for it.
     cycle_config.commit_reserve_prior_ns = static_cast<std::int64_t>(max_edges_) * 1'000;
   }
-  // Exploring, rho comes with each target (ExplorationTarget::rho); in real time the target
-  // thread takes a cycle to choose, so the cycle's own refresh is only a fallback for a late one.
+  // Exploring, rho comes with each target (ExplorationTarget::rho); the target thread takes a
+  // cycle to choose, so the cycle's own refresh is only a fallback for a late one.
   cycle_config.rho_refresh_cycles =
-      explore && !lockstep ? 2 * config_.target_refresh_cycles + 1 : config_.target_refresh_cycles;
+      explore ? 2 * config_.target_refresh_cycles + 1 : config_.target_refresh_cycles;
   auto cycle = ReplanningCycle<V>::create(vehicle_, grid_, sizing_.planner, cycle_config);
   if (!cycle) return cycle.error();
   cycle_.emplace(std::move(cycle).value());

@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include "grip/rt/exploration_driver.hpp"
 #include "grip/rt/replanning_session.hpp"
@@ -60,9 +62,12 @@ void sense(const OccupancyGrid& truth, OccupancyGrid& map, double x, double y, d
   }
 }
 
+// With `target_thread`, a thread beside the loop chooses the targets requested, as the planner
+// participant's target thread does; without, the loop's own update() chooses them.
 template <VehicleModel V>
 ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double start_x,
-                          double start_y, double start_theta, int max_cycles) {
+                          double start_y, double start_theta, int max_cycles,
+                          bool target_thread = false) {
   ExplorationReport report;
   OccupancyGrid unknown = OccupancyGrid::create(truth.width(), truth.height(), truth.resolution(),
                                                 truth.origin_x(), truth.origin_y(), Cell::kUnknown)
@@ -87,6 +92,24 @@ ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double s
   exploration.sensing_radius_m = sensing_m;
   auto driver =
       ExplorationDriver<V>::create(vehicle, map, exploration, session.sizing().planner).value();
+
+  std::atomic<bool> stop{false};
+  std::thread chooser;
+  if (target_thread) {
+    chooser = std::thread([&driver, &stop] {
+      while (!stop.load(std::memory_order_acquire)) {
+        if (!driver.serve_request()) std::this_thread::yield();
+      }
+    });
+  }
+  struct Join {
+    std::atomic<bool>& stop;
+    std::thread& thread;
+    ~Join() {
+      stop.store(true, std::memory_order_release);
+      if (thread.joinable()) thread.join();
+    }
+  } join{stop, chooser};
 
   const typename V::State start = vehicle.rest_state(start_x, start_y, start_theta);
   sim::ExecutorConfig executor_config;
@@ -188,6 +211,20 @@ TEST(ExplorationRun, AVelocityControlledRobotExploresASmallSceneWithoutCollision
   EXPECT_TRUE(r.complete);
   EXPECT_EQ(r.collisions, 0);
   EXPECT_GE(r.coverage, 0.97);
+}
+
+// Lockstep reproduces a run whichever thread chooses the targets: the cycle after a request
+// takes its choice over, made by the target thread beside it or, not begun there, by itself.
+TEST(ExplorationRun, ATargetThreadBesideTheLoopChangesNothingInLockstep) {
+  const OccupancyGrid truth = small_scene();
+  const DdVelocity robot = DdVelocity::create({}).value();
+  const ExplorationReport alone = explore(robot, truth, 1.5, 1.5, 0.0, 300);
+  const ExplorationReport beside = explore(robot, truth, 1.5, 1.5, 0.0, 300, true);
+  ASSERT_GT(alone.distance_m, 5.0);
+  EXPECT_EQ(beside.cycles, alone.cycles);
+  EXPECT_EQ(beside.distance_m, alone.distance_m);
+  EXPECT_EQ(beside.coverage, alone.coverage);
+  EXPECT_EQ(beside.braking_cycles, alone.braking_cycles);
 }
 
 // A room (x < 5 m) and, off it, a corridor 1.4 m wide and 8.7 m long ending in a wall.

@@ -6,8 +6,6 @@
 #include <string>
 
 #include "../world/validation.hpp"
-#include "grip/common/saturating_cast.hpp"
-#include "sight_line.hpp"
 
 namespace grip {
 
@@ -40,139 +38,35 @@ Result<PathSelector> PathSelector::create(int width_cells, int height_cells, dou
   return PathSelector(width_cells, height_cells, resolution_m, max_edges, config);
 }
 
-namespace {
-
-// Map cells per side of a sight cell: the fewest that bring d_max within kMaxSightRadius.
-int sight_block_for(double sensing_radius_m, double resolution_m) {
-  return ceil_to_count(sensing_radius_m / resolution_m / PathSelector::kMaxSightRadius, 1,
-                       OccupancyGrid::kMaxSideCells);
-}
-
-}  // namespace
-
 PathSelector::PathSelector(int width_cells, int height_cells, double resolution_m,
                            std::uint32_t max_edges, const PathSelectionConfig& config)
     : width_(width_cells),
       height_(height_cells),
       resolution_(resolution_m),
-      block_(sight_block_for(config.sensing_radius_m, resolution_m)),
-      sight_width_((width_cells + block_ - 1) / block_),
-      sight_height_((height_cells + block_ - 1) / block_),
       max_edges_(max_edges),
       config_(config),
-      seen_(static_cast<std::size_t>(sight_width_) * static_cast<std::size_t>(sight_height_)),
-      seen_list_(seen_.capacity()),
-      blocked_(block_ > 1 ? seen_.capacity() : 0),
       d_(static_cast<std::size_t>(max_edges) * kMaxTargetCells),
       length_(max_edges),
       stack_(max_edges) {
-  for (std::size_t c = 0; c < seen_.capacity(); ++c) GRIP_ASSERT(seen_.push_back(0));
-  for (std::size_t c = 0; c < blocked_.capacity(); ++c) GRIP_ASSERT(blocked_.push_back(0));
   for (std::size_t i = 0; i < d_.capacity(); ++i) GRIP_ASSERT(d_.push_back(0.0F));
   for (std::size_t e = 0; e < length_.capacity(); ++e) GRIP_ASSERT(length_.push_back(0.0));
 }
 
-void PathSelector::set_target(const OccupancyGrid& grid,
-                              std::span<const std::uint32_t> cells) noexcept {
-  GRIP_ASSERT(grid.width() == width_ && grid.height() == height_ &&
-              grid.resolution() == resolution_);
-  for (const std::uint32_t c : seen_list_) seen_[c] = 0;
-  seen_list_.clear();
-  targets_.clear();
-  origin_x_m_ = grid.origin_x();
-  origin_y_m_ = grid.origin_y();
-  // What blocks the view is read afresh from this grid; a stamp that would wrap clears all.
-  if (++stamp_ > 0x7FFFFFFFU) {
-    std::fill(blocked_.begin(), blocked_.end(), 0U);
-    stamp_ = 1;
-  }
-  // Evenly spread: the i-th of n picks sits at (2i + 1) / 2n along the list, so that both ends
-  // of a short frontier are represented as well as its middle.
-  const std::size_t n = std::min<std::size_t>(cells.size(), kMaxTargetCells);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t c = cells[(2 * i + 1) * cells.size() / (2 * n)];
-    GRIP_ASSERT(c < grid.cell_count());
-    GRIP_ASSERT(targets_.push_back(c));
-    target_x_m_[i] = grid.cell_center_x(grid.cell_x(c));
-    target_y_m_[i] = grid.cell_center_y(grid.cell_y(c));
-    cast_rays_from(grid, static_cast<std::uint32_t>(i));
-  }
-}
-
-std::uint32_t PathSelector::seen_from(std::uint32_t cell) const noexcept {
-  const auto width = static_cast<std::uint32_t>(width_);
-  return seen_[sight_cell(cell % width, cell / width)];
-}
-
-std::uint32_t PathSelector::sight_cell(std::uint32_t x, std::uint32_t y) const noexcept {
-  const auto block = static_cast<std::uint32_t>(block_);
-  return sight_index(static_cast<int>(x / block), static_cast<int>(y / block));
-}
-
-std::uint32_t PathSelector::sight_index(int sx, int sy) const noexcept {
-  return static_cast<std::uint32_t>(sy) * static_cast<std::uint32_t>(sight_width_) +
-         static_cast<std::uint32_t>(sx);
-}
-
-bool PathSelector::blocks_sight(const OccupancyGrid& grid, int sx, int sy) noexcept {
-  if (block_ == 1) return grid.at(sx, sy) != Cell::kFree;
-  if (sx < 0 || sy < 0 || sx >= sight_width_ || sy >= sight_height_) return true;
-  std::uint32_t& known = blocked_[sight_index(sx, sy)];
-  if (known >> 1 == stamp_) return (known & 1U) != 0;
-  bool obstacle = false;
-  bool free = false;
-  const int x1 = std::min(width_, (sx + 1) * block_);
-  const int y1 = std::min(height_, (sy + 1) * block_);
-  for (int y = sy * block_; y < y1 && !obstacle; ++y) {
-    for (int x = sx * block_; x < x1; ++x) {
-      const Cell cell = grid.at(x, y);
-      obstacle = obstacle || cell == Cell::kObstacle;
-      free = free || cell == Cell::kFree;
-    }
-  }
-  const bool blocks = obstacle || !free;
-  known = (stamp_ << 1) | (blocks ? 1U : 0U);
-  return blocks;
-}
-
-void PathSelector::cast_rays_from(const OccupancyGrid& grid, std::uint32_t target_bit) noexcept {
-  const std::uint32_t target = targets_[target_bit];
-  const int tx = grid.cell_x(target) / block_;
-  const int ty = grid.cell_y(target) / block_;
-  const double range_cells = config_.sensing_radius_m / (resolution_ * block_);
-  const double range2 = range_cells * range_cells;
-  const int r = ceil_to_count(range_cells, 0, OccupancyGrid::kMaxSideCells);
-  const std::uint32_t bit = 1U << target_bit;
-  const auto walk = [&](int px, int py) {
-    detail::trace_cells(tx, ty, px, py, [&](int x, int y) {
-      const double dx = x - tx;
-      const double dy = y - ty;
-      const bool start = x == tx && y == ty;
-      if (dx * dx + dy * dy > range2 || (!start && blocks_sight(grid, x, y))) return false;
-      const std::uint32_t c = sight_index(x, y);
-      if (seen_[c] == 0) GRIP_ASSERT(seen_list_.push_back(c));  // each cell once
-      seen_[c] |= bit;
-      return true;
-    });
-  };
-  // Every cell of the border of the square of half-side r, once.
-  for (int i = -r; i < r; ++i) {
-    walk(tx + i, ty - r);
-    walk(tx + r, ty + i);
-    walk(tx - i, ty + r);
-    walk(tx - r, ty - i);
-  }
+Result<TargetSight> PathSelector::create_sight() const {
+  return TargetSight::create(width_, height_, resolution_, config_.sensing_radius_m);
 }
 
 template <VehicleModel V>
-PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_step) noexcept {
+PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& sight,
+                                std::uint32_t min_step) noexcept {
   const auto& tree = planner.tree();
   GRIP_ASSERT(tree.edge_capacity() <= max_edges_);
   GRIP_ASSERT(planner.rho_field().width() == width_ && planner.rho_field().height() == height_);
-  const auto targets = static_cast<std::uint32_t>(targets_.size());
+  GRIP_ASSERT(sight.width() == width_ && sight.height() == height_ &&
+              sight.sensing_radius_m() == config_.sensing_radius_m);
+  const auto targets = static_cast<std::uint32_t>(sight.target_cells().size());
   const auto d_max = static_cast<float>(config_.sensing_radius_m);
   const double lambda = config_.length_weight_per_m;
-  const double inv_resolution = 1.0 / resolution_;
   const auto stride = std::max<int>(
       1, static_cast<int>(std::lround(config_.sample_step_s / planner.config().record_step_s())));
 
@@ -188,16 +82,12 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
   // Folds the state at (x, y) into the vector d and its sum. Most states see nothing (one mask
   // read); a seen target costs a squared distance, and a square root only when it improves.
   const auto fold = [&](float* d, double& d_sum, std::uint32_t& unseen, double x, double y) {
-    const double u = (x - origin_x_m_) * inv_resolution;
-    const double v = (y - origin_y_m_) * inv_resolution;
-    if (!(u >= 0.0 && v >= 0.0 && u < width_ && v < height_)) return;
-    std::uint32_t mask =
-        seen_[sight_cell(static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(v))];
+    std::uint32_t mask = sight.seen_at(x, y);
     seen_any = seen_any || mask != 0;
     for (; mask != 0; mask &= mask - 1) {
       const auto i = static_cast<std::uint32_t>(std::countr_zero(mask));
-      const double dx = x - target_x_m_[i];
-      const double dy = y - target_y_m_[i];
+      const double dx = x - sight.target_x_m(i);
+      const double dy = y - sight.target_y_m(i);
       const double old = static_cast<double>(d[i]);
       if (dx * dx + dy * dy >= old * old) continue;
       const auto distance = static_cast<float>(std::sqrt(dx * dx + dy * dy));
@@ -282,8 +172,11 @@ PathChoice PathSelector::select(const Planner<V>& planner, std::uint32_t min_ste
   return seen_any ? by_sight : by_rho;
 }
 
-template PathChoice PathSelector::select(const Planner<DdVelocity>&, std::uint32_t) noexcept;
-template PathChoice PathSelector::select(const Planner<DdAcceleration>&, std::uint32_t) noexcept;
-template PathChoice PathSelector::select(const Planner<Car>&, std::uint32_t) noexcept;
+template PathChoice PathSelector::select(const Planner<DdVelocity>&, const TargetSight&,
+                                         std::uint32_t) noexcept;
+template PathChoice PathSelector::select(const Planner<DdAcceleration>&, const TargetSight&,
+                                         std::uint32_t) noexcept;
+template PathChoice PathSelector::select(const Planner<Car>&, const TargetSight&,
+                                         std::uint32_t) noexcept;
 
 }  // namespace grip

@@ -380,6 +380,7 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
                        (planning_->lockstep() ? "lockstep" : "real time") +
                        "): vehicle described as configured, map in sync, vehicle state received");
     }
+    planning_->choose_first_target();
     auto report = planning_->lockstep() ? run_lockstep() : run_real_time();
     if (!report || stop_.load(std::memory_order_acquire) || !vehicle_replaced()) return report;
     reset_planning();
@@ -390,7 +391,6 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run() {
 // thread collects.
 template <VehicleModel V>
 Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_real_time() {
-  planning_->choose_first_target();
   PeriodicLoopConfig loop_config;
   const std::int64_t period_wall = planning_->period_wall_ns();
   loop_config.name = kPlanningThread.name;

@@ -55,7 +55,7 @@ class PlanningSide {
   bool lockstep() const noexcept { return session_->lockstep(); }
   double time_scale() const noexcept { return session_->time_scale(); }
   std::int64_t period_wall_ns() const noexcept { return session_->period_wall_ns(); }
-  // Real time, exploring: the first target, before the first cycle (which would otherwise plan
+  // Exploring: the first target, before the first cycle (which would otherwise plan
   // toward the start while the target thread chooses).
   void choose_first_target() noexcept;
 

@@ -21,23 +21,8 @@
 // (ReplanningCycle), grows on until it holds a way out.
 //
 // The bounded approximation, and why:
-//  - c ranges over at most kMaxTargetCells cells of the group, evenly spread along it: a
-//    frontier group can hold hundreds of cells, and one bit per cell keeps "which of them does
-//    this grid cell see" a 32-bit word.
-//  - Seeing is decided per sight cell, once per set_target(): rays are cast from each target's
-//    sight cell to the border of the square of half-side d_max around it and walk
-//    (detail::trace_cells) until they leave the sensing disk or meet a cell that blocks the view;
-//    every cell they cross is marked as seeing that target. Sight along a segment is symmetric,
-//    so this is "the state's cell sees c" at the sight grid's resolution, with rays to the
-//    border cells standing for the segments to each cell (rays one border cell apart are less
-//    than a cell apart everywhere inside). Cost: O(kMaxTargetCells x 8 r^2) per call, r = d_max
-//    in sight cells, independent of the tree.
-//  - The sight grid is the map's grid while d_max spans at most kMaxSightRadius of its cells,
-//    else blocks of k x k map cells with k the smallest that brings d_max within it: the cost
-//    of a call is bounded however fine the map is. A block blocks the view when one of its
-//    cells is an obstacle or none is free: a wall stops sight at the block it touches, up to a
-//    block early, and a frontier's own block, part unknown, is seen through. The target's own
-//    block is always in sight.
+//  - c ranges over at most TargetSight::kMaxTargetCells cells of the group, and "q sees c" is
+//    decided on a sight grid, once per target (TargetSight: its file comment says how).
 //  - Where q sees c, rho_A*(q, c) is the straight distance: the segment between them is free,
 //    so it is the shortest path.
 //  - d and l are taken over the states sampled every sample_step_s along each edge (and its
@@ -50,15 +35,15 @@
 //    thousands of edges; it runs after growth, so the cycle's safety margin (or an earlier stop
 //    of growth) must cover it.
 //
-// Memory is reserved by create() (a 32-bit mask and, with blocks, a 32-bit stamp per sight
-// cell; targets x floats per edge);
-// set_target() and select() never allocate and never throw.
+// Memory is reserved by create() (targets x floats per edge); select() never allocates and
+// never throws.
 
 #include <cstdint>
 #include <limits>
 #include <span>
 
 #include "grip/common/result.hpp"
+#include "grip/exploration/target_sight.hpp"
 #include "grip/memory/fixed_vector.hpp"
 #include "grip/planner/planner.hpp"
 #include "grip/world/occupancy_grid.hpp"
@@ -86,65 +71,38 @@ struct PathChoice {
 
 class PathSelector {
  public:
-  static constexpr std::uint32_t kMaxTargetCells = 32;
-  // [sight cells] d_max spans at most this many cells of the sight grid (see the file comment).
-  static constexpr int kMaxSightRadius = 64;
+  static constexpr std::uint32_t kMaxTargetCells = TargetSight::kMaxTargetCells;
 
   // For grids of this size and resolution and trees of up to max_edges edges (the planner's
   // PlannerConfig::max_edges). Errors as for OccupancyGrid::create and validate(), and for
   // max_edges == 0.
   static Result<PathSelector> create(int width_cells, int height_cells, double resolution_m,
                                      std::uint32_t max_edges, const PathSelectionConfig& config);
-
-  // The cells c of d(tr) (e.g. FrontierMap::target_cells()): up to kMaxTargetCells of them,
-  // evenly spread over the list, and which grid cells see each. Call it whenever the target or
-  // the map changed (every cycle). Asserts the grid's size matches and every cell is in it.
-  void set_target(const OccupancyGrid& grid, std::span<const std::uint32_t> cells) noexcept;
+  // A sight of the target for this selector (its grid and d_max).
+  Result<TargetSight> create_sight() const;
 
   // The minimum-weight trajectory whose end is at least min_step integration steps from the
-  // root (duration >= T). The planner must plan on a grid of this selector's size with at most
+  // root (duration >= T), the target cells c and what sees them from `sight` (one of
+  // create_sight()'s). The planner must plan on a grid of this selector's size with at most
   // max_edges edges (asserted).
   template <VehicleModel V>
-  PathChoice select(const Planner<V>& planner, std::uint32_t min_step) noexcept;
+  PathChoice select(const Planner<V>& planner, const TargetSight& sight,
+                    std::uint32_t min_step) noexcept;
 
-  // The target cells used (after subsampling), and which of them (bit i: target_cells()[i])
-  // the grid cell sees.
-  std::span<const std::uint32_t> target_cells() const noexcept { return targets_.span(); }
-  std::uint32_t seen_from(std::uint32_t cell) const noexcept;
-  // Map cells per side of a sight cell (1: the map's own grid).
-  int sight_block() const noexcept { return block_; }
   const PathSelectionConfig& config() const noexcept { return config_; }
 
  private:
   PathSelector(int width_cells, int height_cells, double resolution_m, std::uint32_t max_edges,
                const PathSelectionConfig& config);
-  void cast_rays_from(const OccupancyGrid& grid, std::uint32_t target_bit) noexcept;
-  bool blocks_sight(const OccupancyGrid& grid, int sx, int sy) noexcept;
-  // The sight cell holding map cell (x, y).
-  std::uint32_t sight_cell(std::uint32_t x, std::uint32_t y) const noexcept;
-  // The index of sight cell (sx, sy), inside the sight grid.
-  std::uint32_t sight_index(int sx, int sy) const noexcept;
 
   int width_;
   int height_;
   double resolution_;
-  int block_;        // map cells per side of a sight cell
-  int sight_width_;  // sight cells
-  int sight_height_;
-  std::uint32_t stamp_ = 0;  // of the current set_target(); blocked_ holds stamp_ << 1 | blocks
-  double origin_x_m_ = 0.0;  // of the grid given to set_target()
-  double origin_y_m_ = 0.0;
   std::uint32_t max_edges_;
   PathSelectionConfig config_;
-  FixedVector<std::uint32_t, kMaxTargetCells> targets_;
-  double target_x_m_[kMaxTargetCells] = {};  // cell centres
-  double target_y_m_[kMaxTargetCells] = {};
-  BoundedVector<std::uint32_t> seen_;       // per sight cell: bit i set = sees target i
-  BoundedVector<std::uint32_t> seen_list_;  // sight cells with a bit set, to clear them
-  BoundedVector<std::uint32_t> blocked_;    // per sight cell, with blocks: stamp_ when known
-  BoundedVector<float> d_;                  // per edge: d(tr, c) at its last sampled state
-  BoundedVector<double> length_;            // per edge: l(tr) at its last state
-  BoundedVector<EdgeHandle> stack_;         // the pre-order walk
+  BoundedVector<float> d_;           // per edge: d(tr, c) at its last sampled state
+  BoundedVector<double> length_;     // per edge: l(tr) at its last state
+  BoundedVector<EdgeHandle> stack_;  // the pre-order walk
 };
 
 }  // namespace grip

@@ -4,12 +4,14 @@
 // moves even when the map does not change), and the plan leads to the tree state of least
 // visibility/length weight toward it (PathSelector).
 //
-// In real time the choice (ExplorationTarget: wavefronts of milliseconds) runs on another
-// thread while the planning thread goes on growing toward the previous target; the first cycle
-// after the choice takes it over. The hand-over is one atomic stage: kIdle (the planning thread
-// owns the target: it copies its map in and notes where the robot will be), kRequested (the
-// target thread chooses), kChosen (the planning thread takes the choice over, then kIdle). In
-// lockstep the choice is made at once, in the cycle, so that a seed reproduces a run.
+// The choice (ExplorationTarget: wavefronts of milliseconds) runs on another thread while the
+// planning thread goes on growing toward the previous target; a later cycle takes it over. The
+// hand-over is one atomic stage: kIdle (the planning thread owns the target: it copies its map
+// in and notes where the robot will be), kRequested (due), kChoosing (the target thread
+// chooses), kChosen (the planning thread takes the choice over, then kIdle). In real time the
+// first cycle after the choice takes it over. In lockstep the cycle after the request does,
+// waiting for the choice if it is not made yet (or making it, if the target thread has not
+// begun): a seed reproduces a run, and the choice still runs beside the growth.
 //
 // create() allocates; everything else never allocates and never throws.
 
@@ -19,6 +21,7 @@
 #include "grip/common/result.hpp"
 #include "grip/exploration/exploration_target.hpp"
 #include "grip/exploration/path_selector.hpp"
+#include "grip/exploration/target_sight.hpp"
 #include "grip/rt/map_changes.hpp"
 #include "grip/rt/replanning_cycle.hpp"
 
@@ -26,9 +29,9 @@ namespace grip::rt {
 
 struct ExplorationDriverConfig {
   ExplorationTargetConfig target;
-  // The target is chosen again every this many cycles (1: every cycle). Taking a new one over
-  // costs the planning thread rho toward it and the path selector's rays, and the tree, which
-  // needs that time to grow, is carried over in between.
+  // The target is chosen again every this many cycles (1: every cycle). A new target costs the
+  // target thread its wavefronts and its sight (TargetSight), and the tree, which needs that
+  // time to grow, is carried over in between.
   std::uint32_t refresh_cycles = 5;
   double sensing_radius_m = 0.0;  // d_max of the path weight; 0: a tenth of the map's width
 };
@@ -44,15 +47,16 @@ class ExplorationDriver {
                                           const ExplorationDriverConfig& config,
                                           const PlannerConfig& planner);
 
-  // Planning thread, before every cycle while exploring. Real time: takes over a chosen target,
-  // or requests a new one when it is due and returns true (wake the target thread). Lockstep:
-  // chooses a due target at once. `changes`: what this cycle wrote into `grid`.
+  // Planning thread, before every cycle while exploring: takes over a chosen target (lockstep:
+  // the one requested the cycle before, once chosen), or requests a new one when it is due and
+  // returns true (wake the target thread). `changes`: what this cycle wrote into `grid`.
   bool update(ReplanningCycle<V>& cycle, const OccupancyGrid& grid, std::uint64_t plan_start_ns,
               const MapChanges& changes, bool lockstep) noexcept;
   // Planning thread: chooses a target now and heads the cycle for it (the first target).
   void choose_now(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
                   std::uint64_t plan_start_ns) noexcept;
-  // Target thread: chooses the requested target; false when none was requested.
+  // Target thread (or, in lockstep, the planning thread): chooses the requested target; false
+  // when none was requested or another thread is choosing it.
   bool serve_request() noexcept;
 
   // The state the plan leads to: the path selector's choice, or the root once explored.
@@ -73,24 +77,31 @@ class ExplorationDriver {
   double target_y_m() const noexcept { return target_y_m_; }
 
  private:
-  enum Stage : std::uint8_t { kIdle, kRequested, kChosen };
+  enum Stage : std::uint8_t { kIdle, kRequested, kChoosing, kChosen };
 
   ExplorationDriver(const ExplorationDriverConfig& config, ExplorationTarget target,
-                    PathSelector selector)
-      : config_(config), target_(std::move(target)), selector_(std::move(selector)) {}
+                    TargetSight chosen_sight, PathSelector selector, TargetSight sight)
+      : config_(config),
+        target_(std::move(target)),
+        chosen_sight_(std::move(chosen_sight)),
+        selector_(std::move(selector)),
+        sight_(std::move(sight)) {}
   void request(const ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
                std::uint64_t plan_start_ns) noexcept;
-  void take_over(ReplanningCycle<V>& cycle, const OccupancyGrid& grid) noexcept;
+  void choose() noexcept;
+  void take_over(ReplanningCycle<V>& cycle) noexcept;
 
   ExplorationDriverConfig config_;
   std::atomic<std::uint8_t> stage_{kIdle};
   ExplorationTarget target_;
-  double robot_x_m_ = 0.0;  // the request: where the robot will be, and when
+  TargetSight chosen_sight_;  // what sees target_'s choice, on the map it was chosen on
+  double robot_x_m_ = 0.0;    // the request: where the robot will be, and when
   double robot_y_m_ = 0.0;
   double robot_theta_ = 0.0;
   std::int64_t robot_ns_ = 0;
   // Planning thread only.
   PathSelector selector_;
+  TargetSight sight_;       // what sees the target taken over
   bool requested_ = false;  // a target has been requested at least once
   std::uint32_t cycles_since_request_ = 0;
   // Where the grid was written since target_ last copied it in (the first copy: all of it).
