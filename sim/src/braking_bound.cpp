@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace grip::sim {
@@ -57,7 +58,7 @@ Result<std::vector<double>> braking_bound_m_s(std::span<const std::array<double,
                                               const OccupancyGrid& grid,
                                               std::span<const std::uint32_t> sensed,
                                               const Footprint& footprint, const SpeedLimits& limits,
-                                              double step_s) {
+                                              double step_s, std::span<const double> caps) {
   if (!positive(limits.max_speed_m_s) || !positive(limits.max_reverse_speed_m_s) ||
       !positive(limits.accel_m_s2) || !positive(limits.braking_decel_m_s2) || !positive(step_s)) {
     return invalid_argument(
@@ -75,6 +76,11 @@ Result<std::vector<double>> braking_bound_m_s(std::span<const std::array<double,
     return invalid_argument("braking bound: " + std::to_string(sensed.size()) +
                             " sensed ticks for a grid of " + std::to_string(grid.cell_count()) +
                             " cells");
+  }
+  if (!caps.empty() && caps.size() != route.size()) {
+    return invalid_argument("braking bound: " + std::to_string(caps.size()) +
+                            " speed caps for a route of " + std::to_string(route.size()) +
+                            " points");
   }
   // The route thinned to a waypoint per half cell; each tick's arc length and last waypoint.
   const double spacing = 0.5 * grid.resolution();
@@ -109,6 +115,18 @@ Result<std::vector<double>> braking_bound_m_s(std::span<const std::array<double,
   }
   const double fastest = std::max(limits.max_speed_m_s, limits.max_reverse_speed_m_s);
   const double stopping_m = fastest * fastest / (2.0 * limits.braking_decel_m_s2);
+  // Each tick's cap, and the speed that still brakes to every cap ahead.
+  std::vector<double> capped(route.size(), std::numeric_limits<double>::infinity());
+  if (!caps.empty()) {
+    double ahead = std::numeric_limits<double>::infinity();
+    for (std::size_t k = route.size(); k-- > 0;) {
+      if (k + 1 < route.size()) {
+        ahead = std::sqrt(ahead * ahead + 2.0 * limits.braking_decel_m_s2 * (arc[k + 1] - arc[k]));
+      }
+      ahead = std::min(ahead, caps[k]);
+      capped[k] = ahead;
+    }
+  }
   std::vector<double> bound(route.size());
   double previous = 0.0;
   std::size_t next_cusp = 0;
@@ -128,7 +146,7 @@ Result<std::vector<double>> braking_bound_m_s(std::span<const std::array<double,
     }
     const double top = backing[k] ? limits.max_reverse_speed_m_s : limits.max_speed_m_s;
     const double v = std::min({top, std::sqrt(2.0 * limits.braking_decel_m_s2 * free_m),
-                               previous + limits.accel_m_s2 * step_s});
+                               previous + limits.accel_m_s2 * step_s, capped[k]});
     bound[k] = v;
     previous = v;
   }

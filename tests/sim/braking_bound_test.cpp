@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -111,6 +112,31 @@ TEST(BrakingBound, TheChassisCountsNotTheReferencePoint) {
   expect_brakes_before_unknown((*bound)[100], 2.8 - 1.55);
 }
 
+TEST(BrakingBound, ASpeedCapIsKeptAndBrakedToFromBehind) {
+  // Everything sensed; a cap of 1 m/s at tick 250 (x = 3.04), none elsewhere.
+  const Sensing s(0, 100.0, 0);
+  Route r;
+  drive(r, 0.55, 0.01, 400);
+  std::vector<double> caps;
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    caps.push_back(k == 250 ? 1.0 : std::numeric_limits<double>::infinity());
+  }
+  const auto bound =
+      braking_bound_m_s(r, facing_x(r), s.grid, s.ticks, kChassis, kLimits, kStep, caps);
+  ASSERT_TRUE(bound.ok()) << bound.error().message;
+  EXPECT_NEAR((*bound)[250], 1.0, 1e-12);
+  // 1 m before it, what brakes to 1 m/s within 1 m; from rest, the ramp is lower still.
+  EXPECT_NEAR((*bound)[150], std::sqrt(1.0 + 2.0 * 0.6 * 1.0), 1e-9);
+  EXPECT_NEAR((*bound)[50], 1.53, 1e-9);
+  // After it, the ramp from the cap again.
+  EXPECT_NEAR((*bound)[260], 1.3, 1e-9);
+  const auto uncapped =
+      braking_bound_m_s(r, facing_x(r), s.grid, s.ticks, kChassis, kLimits, kStep);
+  ASSERT_TRUE(uncapped.ok());
+  for (std::size_t k = 0; k < r.size(); ++k) EXPECT_LE((*bound)[k], (*uncapped)[k]) << k;
+  EXPECT_GT((*uncapped)[250], 2.0);
+}
+
 TEST(BrakingBound, BadInputIsNamed) {
   const Sensing s(0, 100.0, 0);
   const Route r(10, {5.0, 1.0});
@@ -132,6 +158,13 @@ TEST(BrakingBound, BadInputIsNamed) {
   EXPECT_NE(few_headings.error().message.find("3 headings for a route of 10 points"),
             std::string::npos)
       << few_headings.error().message;
+  const std::vector<double> few_caps(4, 1.0);
+  const auto short_caps =
+      braking_bound_m_s(r, facing_x(r), s.grid, s.ticks, kChassis, kLimits, kStep, few_caps);
+  ASSERT_FALSE(short_caps.ok());
+  EXPECT_NE(short_caps.error().message.find("4 speed caps for a route of 10 points"),
+            std::string::npos)
+      << short_caps.error().message;
 }
 
 }  // namespace

@@ -40,6 +40,7 @@ constexpr Rgb kAverage{204, 102, 0};
 constexpr Rgb kMaxLine{51, 51, 51};
 constexpr Rgb kCollision{255, 0, 0};
 constexpr Rgb kBrakingBound{51, 166, 51};
+constexpr Rgb kTurningBound{153, 51, 204};
 
 // Where the chart puts a time and a speed, for an image of w x h pixels whose time axis ends at
 // t_max_s and whose fastest speed (the maximum, or a faster sample) is top_m_s.
@@ -165,13 +166,16 @@ TEST_F(RenderCommand, ASpeedStepIsDrawnAtBothHeightsAtTheirTimes) {
   expect_curve_at(img, l, l.x(7.5), l.y(2.4), kSpeed);
 }
 
-TEST_F(RenderCommand, TheBrakingBoundIsDrawnUnderTheSpeedAndSummarised) {
-  // The speed 0.6 m/s throughout; the bound 1.2 m/s for 5 s, then 2.4 m/s.
+TEST_F(RenderCommand, TheBoundsAreDrawnUnderTheSpeedAndSummarised) {
+  // The speed 0.6 m/s throughout; the braking bound 1.2 m/s for 5 s, then 2.4 m/s; within the
+  // route's turns, 0.9 m/s throughout.
   nlohmann::json j = report(ticks(200, [](double) { return 0.6; }));
   nlohmann::json bound = nlohmann::json::array();
   for (int i = 1; i <= 200; ++i) bound.push_back(i <= 100 ? 1.2 : 2.4);
   j["braking_bound_profile"] = bound;
   j["braking_bound_fraction"] = 0.6;
+  j["turning_bound_profile"] = std::vector<double>(200, 0.9);
+  j["turning_bound_fraction"] = 0.3;
   const std::string png = path("bound.png");
   const CommandRun r = render(write_report("bound.json", j), png, "--smooth 0");
   ASSERT_EQ(r.status, 0) << r.output;
@@ -181,7 +185,12 @@ TEST_F(RenderCommand, TheBrakingBoundIsDrawnUnderTheSpeedAndSummarised) {
   expect_curve_at(img, l, l.x(2.5), l.y(1.2), kBrakingBound);
   expect_curve_at(img, l, l.x(7.5), l.y(2.4), kBrakingBound);
   expect_curve_at(img, l, l.x(7.5), l.y(0.6), kSpeed);
+  expect_curve_at(img, l, l.x(2.5), l.y(0.9), kTurningBound);
+  expect_curve_at(img, l, l.x(7.5), l.y(0.9), kTurningBound);
   EXPECT_NE(r.output.find("braking bound fraction (braking within the sensed region) 0.600"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("turning bound fraction (the same, within the route's turns) 0.300"),
             std::string::npos)
       << r.output;
   // Without one, nothing of its colour.
@@ -192,9 +201,10 @@ TEST_F(RenderCommand, TheBrakingBoundIsDrawnUnderTheSpeedAndSummarised) {
             0);
   const Image none(plain);
   ASSERT_TRUE(none.ok());
-  EXPECT_TRUE(
-      none.rows_with(static_cast<int>(l.x(2.5)), kBrakingBound, l.plot_top(), l.plot_bottom())
-          .empty());
+  for (const Rgb colour : {kBrakingBound, kTurningBound}) {
+    EXPECT_TRUE(
+        none.rows_with(static_cast<int>(l.x(2.5)), colour, l.plot_top(), l.plot_bottom()).empty());
+  }
 }
 
 TEST_F(RenderCommand, ASingleSampleIsADot) {
@@ -297,6 +307,10 @@ TEST_F(RenderCommand, BadReportsAreRefusedNamingTheFileAndTheProblem) {
        "braking_bound_profile[2] is not a speed >= 0"},
       {"bound-fraction", with("braking_bound_fraction", "high"),
        "braking_bound_fraction is not a fraction >= 0"},
+      {"turning-count", with("turning_bound_profile", json::parse("[1.0]")),
+       "turning_bound_profile has 1 samples, speed_profile 4"},
+      {"turning-fraction", with("turning_bound_fraction", -0.5),
+       "turning_bound_fraction is not a fraction >= 0"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);

@@ -130,7 +130,8 @@ struct Row {
   int collided = 0;  // runs with at least one collision
   std::uint64_t collisions = 0;
   double min_coverage = 1.0;
-  std::vector<double> coverage, sim_time, wall_time, speed, bound, retraced, first_collision;
+  std::vector<double> coverage, sim_time, wall_time, speed, bound, turning_bound, retraced,
+      first_collision;
   bool target_met(bool no_safety) const {
     if (no_safety) return collided > 0;  // the ablation shows why the safety step exists
     // The target; whether each run also ended by itself is the `complete` column.
@@ -172,6 +173,7 @@ std::vector<Row> tabulate(const std::vector<Run>& runs) {
     row->wall_time.push_back(j.value("wall_time_s", 0.0));
     row->speed.push_back(j.value("mean_speed_fraction", 0.0));
     row->bound.push_back(j.value("braking_bound_fraction", 0.0));
+    row->turning_bound.push_back(j.value("turning_bound_fraction", 0.0));
     row->retraced.push_back(j.value("retraced_fraction", 0.0));
   }
   return rows;
@@ -183,8 +185,8 @@ void print_table(const BenchExploreOptions& o, const std::vector<Row>& rows) {
             << std::setw(9) << "complete" << std::setw(11) << "collisions" << std::setw(9)
             << "collided" << std::setw(10) << "cov min" << std::setw(10) << "cov med"
             << std::setw(11) << "sim s med" << std::setw(12) << "wall s med" << std::setw(11)
-            << "speed med" << std::setw(11) << "bound med" << std::setw(14) << "retraced med"
-            << std::setw(11) << "1st coll s"
+            << "speed med" << std::setw(11) << "bound med" << std::setw(12) << "turns med"
+            << std::setw(14) << "retraced med" << std::setw(11) << "1st coll s"
             << "  target\n";
   std::size_t short_of_target = 0;
   for (const Row& r : rows) {
@@ -199,8 +201,9 @@ void print_table(const BenchExploreOptions& o, const std::vector<Row>& rows) {
               << std::setprecision(3) << std::setw(10) << r.min_coverage << std::setw(10)
               << median(r.coverage) << std::setprecision(1) << std::setw(11) << median(r.sim_time)
               << std::setw(12) << median(r.wall_time) << std::setprecision(2) << std::setw(11)
-              << median(r.speed) << std::setw(11) << median(r.bound) << std::setw(14)
-              << median(r.retraced) << std::setprecision(1) << std::setw(11);
+              << median(r.speed) << std::setw(11) << median(r.bound) << std::setw(12)
+              << median(r.turning_bound) << std::setw(14) << median(r.retraced)
+              << std::setprecision(1) << std::setw(11);
     if (r.first_collision.empty()) {
       std::cout << "-";
     } else {
@@ -306,10 +309,11 @@ int run_bench(const BenchExploreOptions& o) {
                        {"exit_status", r.exit_status},
                        {"report", o.out_dir + "/" + r.stem + ".json"}};
       if (!r.report.is_null()) {
-        for (const char* key : {"result", "coverage", "collisions", "sim_time_s", "wall_time_s",
-                                "mean_speed_fraction", "braking_bound_fraction",
-                                "without_plan_fraction", "distance_m", "retraced_fraction",
-                                "empty_plans", "start_mismatches", "cycles", "deadline_misses"}) {
+        for (const char* key :
+             {"result", "coverage", "collisions", "sim_time_s", "wall_time_s",
+              "mean_speed_fraction", "braking_bound_fraction", "turning_bound_fraction",
+              "without_plan_fraction", "distance_m", "retraced_fraction", "empty_plans",
+              "start_mismatches", "cycles", "deadline_misses"}) {
           if (r.report.contains(key)) e[key] = r.report.at(key);
         }
       }
@@ -330,6 +334,7 @@ int run_bench(const BenchExploreOptions& o) {
                        {"median_wall_time_s", median(r.wall_time)},
                        {"median_mean_speed_fraction", median(r.speed)},
                        {"median_braking_bound_fraction", median(r.bound)},
+                       {"median_turning_bound_fraction", median(r.turning_bound)},
                        {"median_retraced_fraction", median(r.retraced)},
                        {"target_met", r.target_met(o.no_safety)}});
     }

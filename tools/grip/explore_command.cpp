@@ -125,6 +125,7 @@ nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
   j["retraced_fraction"] = r.retraced_fraction;
   j["mean_speed_fraction"] = r.mean_speed_fraction;
   j["braking_bound_fraction"] = r.braking_bound_fraction;
+  j["turning_bound_fraction"] = r.turning_bound_fraction;
   j["without_plan_fraction"] = r.without_plan_fraction;
   j["plans_received"] = r.plans_received;
   j["plans_rejected"] = r.plans_rejected;
@@ -162,13 +163,15 @@ nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
                     {"tree_edges", s.tree_edges}};
   }
   // The velocity profile of the paper's Fig. 9, one sample per simulation tick, the speed
-  // braking within the sensed region allowed at each (none for a vehicle that stops at once),
-  // and how much of the time the vehicle went near its maximum speed (`grip render
+  // braking within the sensed region allowed at each, and within the route's turns (none for a
+  // vehicle that stops at once), and how much of the time the vehicle went near its maximum speed
+  // (`grip render
   // --speed-profile` draws it).
   nlohmann::json profile = nlohmann::json::array();
   for (const auto& sample : r.speed_profile) profile.push_back({sample[0], sample[1]});
   j["speed_profile"] = profile;
   j["braking_bound_profile"] = r.braking_bound_profile;
+  j["turning_bound_profile"] = r.turning_bound_profile;
   if (r.max_speed_m_s > 0.0) {
     const SpeedProfileSummary speed = summarize_speed_profile(r.speed_profile, r.max_speed_m_s);
     j["time_fraction_above_50pct_max_speed"] = speed.fraction_above_50;
@@ -228,10 +231,11 @@ int finish(const ExploreOptions& o, const params::GripParams& p, const World& wo
             << r.distance_m << " m (" << std::setprecision(2) << r.retraced_fraction
             << " of it retraced), mean speed " << std::setprecision(2) << r.mean_speed_fraction
             << " of top (braking within the sensed region allows " << r.braking_bound_fraction
-            << "; without a plan " << r.without_plan_fraction << " of the time)\n  planner cycles "
-            << r.cycles << ", deadline misses " << r.deadline_misses << ", plans "
-            << r.plans_received << " (rejected " << r.plans_rejected << ", " << r.empty_plans
-            << " empty, " << r.start_mismatches << " refused: not starting where the vehicle was"
+            << ", and within its turns " << r.turning_bound_fraction << "; without a plan "
+            << r.without_plan_fraction << " of the time)\n  planner cycles " << r.cycles
+            << ", deadline misses " << r.deadline_misses << ", plans " << r.plans_received
+            << " (rejected " << r.plans_rejected << ", " << r.empty_plans << " empty, "
+            << r.start_mismatches << " refused: not starting where the vehicle was"
             << (r.plans_dropped > 0 ? ", " + std::to_string(r.plans_dropped) + " dropped on purpose"
                                     : "")
             << "), contingency stops " << r.contingency_stops << "\n";

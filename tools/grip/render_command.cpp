@@ -69,6 +69,10 @@ void print_summary(const RenderOptions& o, const SpeedReport& r, const SpeedProf
     std::cout << "  the report's braking bound fraction (braking within the sensed region) "
               << fixed(r.braking_bound_fraction, 3) << "\n";
   }
+  if (r.turning_bound_fraction >= 0.0) {
+    std::cout << "  the report's turning bound fraction (the same, within the route's turns) "
+              << fixed(r.turning_bound_fraction, 3) << "\n";
+  }
 }
 
 int run_render(const RenderOptions& o) {

@@ -96,23 +96,22 @@ Status read_profile(const nlohmann::json& report, std::vector<SpeedSample>& out)
   return Ok{};
 }
 
-// "braking_bound_profile": a speed per sample of the profile, at the sample's time.
-Status read_braking_bound(const nlohmann::json& report, const std::vector<SpeedSample>& profile,
-                          std::vector<SpeedSample>& out) {
-  const auto it = report.find("braking_bound_profile");
+// A bound's profile (`key`): a speed per sample of the profile, at the sample's time.
+Status read_bound(const nlohmann::json& report, const std::string& key,
+                  const std::vector<SpeedSample>& profile, std::vector<SpeedSample>& out) {
+  const auto it = report.find(key);
   if (it == report.end()) return Ok{};
-  if (!it->is_array()) return parse_error("braking_bound_profile is not an array");
+  if (!it->is_array()) return parse_error(key + " is not an array");
   if (it->empty()) return Ok{};
   if (it->size() != profile.size()) {
-    return parse_error("braking_bound_profile has " + std::to_string(it->size()) +
-                       " samples, speed_profile " + std::to_string(profile.size()));
+    return parse_error(key + " has " + std::to_string(it->size()) + " samples, speed_profile " +
+                       std::to_string(profile.size()));
   }
   out.reserve(it->size());
   for (std::size_t i = 0; i < it->size(); ++i) {
     const nlohmann::json& e = (*it)[i];
     if (!e.is_number() || !std::isfinite(e.get<double>()) || e.get<double>() < 0.0) {
-      return parse_error("braking_bound_profile[" + std::to_string(i) +
-                         "] is not a speed >= 0: " + e.dump());
+      return parse_error(key + "[" + std::to_string(i) + "] is not a speed >= 0: " + e.dump());
     }
     out.push_back({profile[i][0], e.get<double>()});
   }
@@ -169,9 +168,14 @@ Result<SpeedReport> speed_report_from_json(const nlohmann::json& report) {
   if (Status s = read_fraction(report, "mean_speed_fraction", r.mean_speed_fraction); !s) {
     return s.error();
   }
-  if (Status s = read_braking_bound(report, r.profile, r.braking_bound); !s) return s.error();
-  if (Status s = read_fraction(report, "braking_bound_fraction", r.braking_bound_fraction); !s) {
-    return s.error();
+  for (const auto& [name, bound, fraction] :
+       {std::tuple{"braking", &r.braking_bound, &r.braking_bound_fraction},
+        std::tuple{"turning", &r.turning_bound, &r.turning_bound_fraction}}) {
+    const std::string key = std::string(name) + "_bound_";
+    if (Status s = read_bound(report, key + "profile", r.profile, *bound); !s) return s.error();
+    if (Status s = read_fraction(report, (key + "fraction").c_str(), *fraction); !s) {
+      return s.error();
+    }
   }
   return r;
 }

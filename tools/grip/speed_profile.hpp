@@ -49,6 +49,9 @@ struct SpeedReport {
   // sim/braking_bound.hpp); empty when the report has none (a vehicle that stops at once).
   std::vector<SpeedSample> braking_bound;
   double braking_bound_fraction = -1.0;  // the report's; < 0: absent
+  // The same within what the route's turns allow (sim/turning_bound.hpp).
+  std::vector<SpeedSample> turning_bound;
+  double turning_bound_fraction = -1.0;
 };
 
 // Reads and checks the fields above. Errors (kParse) say what is wrong and where, e.g.

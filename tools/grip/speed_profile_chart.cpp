@@ -23,6 +23,7 @@ constexpr Rgb kAverageColour{0.8, 0.4, 0.0};
 constexpr Rgb kMaxColour{0.2, 0.2, 0.2};
 constexpr Rgb kCollisionColour{1.0, 0.0, 0.0};
 constexpr Rgb kBrakingBoundColour{0.2, 0.65, 0.2};
+constexpr Rgb kTurningBoundColour{0.6, 0.2, 0.8};
 constexpr Rgb kGridColour{0.88, 0.88, 0.88};
 
 // Data to pixels.
@@ -135,6 +136,7 @@ void draw_legend(cairo_t* cr, const SpeedReport& r, const SpeedProfileSummary& s
   };
   swatch(kSpeedColour, 2.0, false, "speed");
   if (!r.braking_bound.empty()) swatch(kBrakingBoundColour, 2.0, false, "braking bound");
+  if (!r.turning_bound.empty()) swatch(kTurningBoundColour, 2.0, false, "within its turns");
   if (o.smooth_s > 0.0) swatch(kAverageColour, 2.5, false, tick_label(o.smooth_s) + " s average");
   swatch(kMaxColour, 1.5, true, "maximum " + tick_label(r.max_speed_m_s) + " m/s");
   if (!r.collision_times_s.empty()) {
@@ -148,6 +150,9 @@ void draw_legend(cairo_t* cr, const SpeedReport& r, const SpeedProfileSummary& s
   }
   if (r.braking_bound_fraction >= 0.0 && !r.braking_bound.empty()) {
     mean += ", bound " + fixed(r.braking_bound_fraction, 2);
+  }
+  if (r.turning_bound_fraction >= 0.0 && !r.turning_bound.empty()) {
+    mean += ", within its turns " + fixed(r.turning_bound_fraction, 2);
   }
   draw_text(cr, mean, x, y, 12.0, true);
 }
@@ -200,9 +205,13 @@ Status write_speed_profile_png(const SpeedReport& report, const SpeedProfileSumm
   cairo_save(cr);
   cairo_rectangle(cr, axes.area.left_px, axes.area.top_px, axes.area.width_px, axes.area.height_px);
   cairo_clip(cr);
-  // The bound under the speed: where they meet, the vehicle drove as fast as braking allowed.
+  // The bounds under the speed: where they meet, the vehicle drove as fast as braking (and its
+  // turns) allowed.
   if (!report.braking_bound.empty()) {
     draw_curve(cr, axes, report.braking_bound, kBrakingBoundColour, 2.0);
+  }
+  if (!report.turning_bound.empty()) {
+    draw_curve(cr, axes, report.turning_bound, kTurningBoundColour, 2.0);
   }
   draw_curve(cr, axes, report.profile, kSpeedColour, 2.0);
   if (options.smooth_s > 0.0) {

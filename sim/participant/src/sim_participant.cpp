@@ -16,6 +16,7 @@
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/range_sensor.hpp"
 #include "grip/sim/retraced_distance.hpp"
+#include "grip/sim/turning_bound.hpp"
 #include "grip/vehicles/vehicle_params.hpp"
 
 namespace grip::sim {
@@ -41,22 +42,59 @@ std::string left_frontiers(const grip_msg_PlannerStatus& status) {
   return left;
 }
 
-// braking_bound_m_s for the route of a vehicle that brakes at a bounded rate; none for one
-// that stops at once.
+// The limits on how fast the vehicle drives a route for the way it turns.
 template <VehicleModel V>
-Result<std::vector<double>> braking_bound_of(const V& vehicle,
-                                             std::span<const std::array<double, 2>> route,
-                                             std::span<const double> headings,
-                                             const OccupancyGrid& grid, const SensedTicks& sensed,
-                                             double step_s) {
+TurningLimits turning_limits_of(const V& vehicle) {
+  TurningLimits limits;
+  if constexpr (V::kKind == VehicleKind::kCar) {
+    limits.wheelbase_m = vehicle.params().wheelbase_m;
+    limits.max_steer_rate_rad_s = vehicle.params().max_steer_rate_rad_s;
+  } else if constexpr (V::kKind == VehicleKind::kDdAcceleration) {
+    limits.max_turn_rate_rad_s = vehicle.max_turn_rate_rad_s();
+    limits.half_track_m = vehicle.params().half_axle_m;
+    limits.max_wheel_speed_m_s = vehicle.params().max_wheel_speed_m_s;
+    limits.wheel_accel_m_s2 = vehicle.accel_bound_m_s2();
+  }
+  return limits;
+}
+
+// Per tick, for a vehicle that brakes at a bounded rate (none for one that stops at once): the
+// braking bound, and the braking bound within what its turns allow.
+struct SpeedBounds {
+  std::vector<double> braking;
+  std::vector<double> turning;
+};
+
+template <VehicleModel V>
+Result<SpeedBounds> speed_bounds_of(const V& vehicle, std::span<const std::array<double, 2>> route,
+                                    std::span<const double> headings, const OccupancyGrid& grid,
+                                    const SensedTicks& sensed, double step_s) {
+  SpeedBounds bounds;
   if constexpr (LimitsAcceleration<V>) {
     const SpeedLimits limits{vehicle.max_speed_m_s(), vehicle.max_reverse_speed_m_s(),
                              vehicle.accel_bound_m_s2(), vehicle.braking_decel_m_s2()};
-    return braking_bound_m_s(route, headings, grid, sensed.ticks(), vehicle.footprint(), limits,
-                             step_s);
-  } else {
-    return std::vector<double>{};
+    auto braking = braking_bound_m_s(route, headings, grid, sensed.ticks(), vehicle.footprint(),
+                                     limits, step_s);
+    if (!braking) return braking.error();
+    auto caps = turning_caps_m_s(route, headings, turning_limits_of(vehicle));
+    if (!caps) return caps.error();
+    auto turning = braking_bound_m_s(route, headings, grid, sensed.ticks(), vehicle.footprint(),
+                                     limits, step_s, *caps);
+    if (!turning) return turning.error();
+    bounds.braking = std::move(braking).value();
+    bounds.turning = std::move(turning).value();
   }
+  return bounds;
+}
+
+// The mean of `profile` over its last `ticks` ticks, over top speed; 1 without a profile.
+double bound_fraction(const std::vector<double>& profile, std::uint64_t ticks, double top_m_s) {
+  if (profile.empty() || ticks == 0) return 1.0;
+  double sum = 0.0;
+  for (auto it = profile.end() - static_cast<std::ptrdiff_t>(ticks); it != profile.end(); ++it) {
+    sum += *it;
+  }
+  return sum / static_cast<double>(ticks) / top_m_s;
 }
 
 template <VehicleModel V>
@@ -338,21 +376,15 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     report.without_plan_fraction =
         static_cast<double>(ticks_without_plan) / static_cast<double>(stats.speed_ticks);
   }
-  auto bound = braking_bound_of(vehicle, report.trajectory, headings, sensed, sensed_ticks, dt);
-  if (!bound) return bound.error();
-  report.braking_bound_profile = std::move(bound).value();
-  report.braking_bound_fraction = 1.0;
-  if (!report.braking_bound_profile.empty() && stats.speed_ticks > 0) {
-    // Over the ticks since the first plan, as the mean speed.
-    double sum = 0.0;
-    for (auto it =
-             report.braking_bound_profile.end() - static_cast<std::ptrdiff_t>(stats.speed_ticks);
-         it != report.braking_bound_profile.end(); ++it) {
-      sum += *it;
-    }
-    report.braking_bound_fraction =
-        sum / static_cast<double>(stats.speed_ticks) / vehicle.max_speed_m_s();
-  }
+  auto bounds = speed_bounds_of(vehicle, report.trajectory, headings, sensed, sensed_ticks, dt);
+  if (!bounds) return bounds.error();
+  // Over the ticks since the first plan, as the mean speed.
+  report.braking_bound_fraction =
+      bound_fraction(bounds->braking, stats.speed_ticks, vehicle.max_speed_m_s());
+  report.turning_bound_fraction =
+      bound_fraction(bounds->turning, stats.speed_ticks, vehicle.max_speed_m_s());
+  report.braking_bound_profile = std::move(bounds->braking);
+  report.turning_bound_profile = std::move(bounds->turning);
   report.contingency_stops = stats.contingencies;
   report.start_mismatches = stats.plans_refused;
   report.max_start_error_m = stats.max_start_position_error_m;

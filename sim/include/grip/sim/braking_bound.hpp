@@ -9,9 +9,11 @@
 // run ended (treated as open). The bound is the speed it can brake to rest from within that
 // distance d, sqrt(2 b d) with the braking deceleration b, capped at the top speed (backing up,
 // at the top reverse speed), and reached from the previous tick's bound at most at the
-// acceleration bound (a vehicle at rest cannot jump to it). It ignores everything else: the
-// planner's choice of route, turning, obstacles a later plan would meet. A mean speed close to
-// it means the vehicle drove as fast as its sensing allowed.
+// acceleration bound (a vehicle at rest cannot jump to it). With caps (turning_bound.hpp: what
+// the route's turns allow), it is also at most each tick's cap and the speed that brakes to
+// every cap ahead in time. It ignores everything else: the planner's choice of route, obstacles
+// a later plan would meet. A mean speed close to it means the vehicle drove as fast as its
+// sensing (and its turns) allowed.
 
 #include <array>
 #include <cstdint>
@@ -52,12 +54,13 @@ class SensedTicks {
 // The bound per tick [m/s]: `route[k]` and `headings[k]` are the reference point's (x, y) and
 // the chassis's heading at the end of tick k + 1, sensed from there in that tick (SensedTicks
 // marked with k + 1; cells sensed before the first tick with 0); `grid` gives the geometry of
-// `sensed`. Errors: limits or step not finite and > 0, `headings` or `sensed` of the wrong size.
+// `sensed`; `caps`, per tick, or empty. Errors: limits or step not finite and > 0, `headings`,
+// `sensed` or `caps` of the wrong size.
 Result<std::vector<double>> braking_bound_m_s(std::span<const std::array<double, 2>> route,
                                               std::span<const double> headings,
                                               const OccupancyGrid& grid,
                                               std::span<const std::uint32_t> sensed,
                                               const Footprint& footprint, const SpeedLimits& limits,
-                                              double step_s);
+                                              double step_s, std::span<const double> caps = {});
 
 }  // namespace grip::sim

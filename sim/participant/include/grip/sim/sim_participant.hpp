@@ -112,8 +112,10 @@ struct SimRunReport {
   // Since the first plan, as mean_speed_fraction: the mean of the speed braking within the
   // sensed region allows on the route driven (sim/braking_bound.hpp) over the top speed (1 for
   // a vehicle that stops at once), and the share of ticks the vehicle braked or stood for want
-  // of a plan (the last plan ran out or the planner fell silent).
+  // of a plan (the last plan ran out or the planner fell silent). turning_bound_fraction: the
+  // same bound within what the route's turns allow (sim/turning_bound.hpp).
   double braking_bound_fraction = 0.0;
+  double turning_bound_fraction = 0.0;
   double without_plan_fraction = 0.0;
   std::uint64_t plans_received = 0;
   std::uint64_t plans_rejected = 0;
@@ -131,6 +133,7 @@ struct SimRunReport {
   std::vector<std::array<double, 2>> trajectory;     // (x, y) per tick
   std::vector<std::array<double, 2>> speed_profile;  // (t, |v|) per tick
   std::vector<double> braking_bound_profile;         // [m/s] per tick; empty: stops at once
+  std::vector<double> turning_bound_profile;         // [m/s] per tick; empty: stops at once
   double max_speed_m_s = 0.0;
   std::optional<OccupancyGrid> known;  // what was sensed
   std::optional<grip_msg_PlannerStatus> last_status;
