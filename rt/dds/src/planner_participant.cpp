@@ -473,19 +473,27 @@ Result<PlannerParticipantReport> PlannerParticipantFor<V>::run_lockstep() {
       if (state.incarnation != planning_->vehicle_incarnation()) continue;  // replaced: ends
     }
     have_state = false;
-    const std::int64_t start = platform::now_ns();
+    // Released by the state; woken once the map holds every update sensed up to it. The time
+    // blocked for tiles still on their way is the simulator's and the link's, not the cycle's.
+    const std::int64_t release = platform::now_ns();
+    std::int64_t blocked = 0;
     MapChanges changes;
     planning_->apply_tiles(changes);
     while (planning_->map_sequence() < state.map_sequence &&
            !stop_.load(std::memory_order_acquire) && !vehicle_replaced()) {
+      const std::int64_t waiting = platform::now_ns();
       static_cast<void>(wakeups_.lockstep_inputs.wait(std::chrono::milliseconds(50)));
+      blocked += platform::now_ns() - waiting;
       planning_->apply_tiles(changes);
     }
+    const std::int64_t start = release + blocked;
     CycleRecord record;
     record.outcome = planning_->lockstep_cycle(state, changes, start);
     record.cycle = report.cycles++;
-    record.release_ns = start;
+    record.release_ns = release;
+    record.wake_latency_ns = blocked;
     record.compute_ns = platform::now_ns() - start;
+    report.wake_latency.record(record.wake_latency_ns);
     report.compute.record(record.compute_ns);
     if (config_.on_cycle) config_.on_cycle(record);
     if (config_.on_progress && platform::now_ns() >= next_progress) {

@@ -141,6 +141,8 @@ struct PlannerParticipantReport {
   bool allocations_counted = false;
   std::uint64_t heap_allocations_in_loop = 0;  // planning thread, after warm-up
   platform::ThreadUsage usage_in_loop{};
+  // Release to wake-up (lockstep: the state's arrival to the map holding every update sensed
+  // up to it), and wake-up to the end of the cycle.
   LatencyHistogram wake_latency;
   LatencyHistogram compute;
   // Each published plan's way out, on the publish thread: from its commit on the planning
