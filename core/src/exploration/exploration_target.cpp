@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "../world/validation.hpp"
@@ -67,16 +68,21 @@ void ExplorationTarget::copy_map(const OccupancyGrid& map, const CellBox& writte
   const CellBox box{std::max(written.x0, 0), std::max(written.y0, 0),
                     std::min(written.x1, map.width() - 1), std::min(written.y1, map.height() - 1)};
   if (box.empty()) return;
-  const std::span<const Cell> from = map.cells();
-  const std::span<Cell> to = map_->mutable_cells();
+  const auto n = static_cast<std::size_t>(box.x1 - box.x0 + 1);
   for (int y = box.y0; y <= box.y1; ++y) {
-    for (int x = box.x0; x <= box.x1; ++x) {
-      const std::uint32_t i = map.index(x, y);
-      if ((to[i] == Cell::kFree) != (from[i] == Cell::kFree)) {
-        clearance_changed_.add(CellBox{x, y, x, y});
-      }
-      to[i] = from[i];
+    const Cell* from = map.cells().data() + map.index(box.x0, y);
+    Cell* to = map_->mutable_cells().data() + map.index(box.x0, y);
+    if (std::memcmp(from, to, n) == 0) continue;  // much of a sweep's box is as it was
+    // The row's first and last cells that changed between free and not free.
+    std::size_t first = 0;
+    while (first < n && (to[first] == Cell::kFree) == (from[first] == Cell::kFree)) ++first;
+    if (first < n) {
+      std::size_t last = n - 1;
+      while ((to[last] == Cell::kFree) == (from[last] == Cell::kFree)) --last;
+      clearance_changed_.add(
+          CellBox{box.x0 + static_cast<int>(first), y, box.x0 + static_cast<int>(last), y});
     }
+    std::memcpy(to, from, n);
   }
   written_.add(box);
   map_changed_ = true;
