@@ -4,6 +4,13 @@
 
 namespace grip::rt {
 
+namespace {
+// An acceleration-limited vehicle's path weight counts a trajectory's duration at this share of
+// its top speed (PathSelectionConfig::reference_speed_m_s): about the speed braking within its
+// sensor's range allows, so a trajectory that keeps that speed weighs what its length would.
+constexpr double kReferenceSpeedShare = 2.0 / 3.0;
+}  // namespace
+
 template <VehicleModel V>
 Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
                                                           const OccupancyGrid& grid,
@@ -21,6 +28,9 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
   auto target = ExplorationTarget::create(grid, target_config);
   if (!target) return target.error();
   PathSelectionConfig selection;
+  if constexpr (LimitsAcceleration<V>) {
+    selection.reference_speed_m_s = kReferenceSpeedShare * vehicle.max_speed_m_s();
+  }
   selection.sensing_radius_m =
       config.sensing_radius_m > 0.0 ? config.sensing_radius_m : grid.width_m() / 10.0;
   auto selector = PathSelector::create(grid.width(), grid.height(), grid.resolution(),
@@ -115,8 +125,10 @@ void ExplorationDriver<V>::choose() noexcept {
 
 template <VehicleModel V>
 TreeState ExplorationDriver<V>::choose_plan_end(const Planner<V>& planner,
-                                                std::uint32_t cycle_steps) noexcept {
-  return explored_ ? planner.root_state() : selector_.select(planner, sight_, cycle_steps).state;
+                                                std::uint32_t cycle_steps,
+                                                TreeState course) noexcept {
+  return explored_ ? planner.root_state()
+                   : selector_.select(planner, sight_, cycle_steps, course).state;
 }
 
 // The planning thread, with target_ its own (kIdle).

@@ -149,7 +149,8 @@ ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double s
     const CycleOutcome out = session.run(
         now, 0,
         [&](const Planner<V>& planner) {
-          return driver.choose_plan_end(planner, session.cycle().cycle_steps());
+          return driver.choose_plan_end(planner, session.cycle().cycle_steps(),
+                                        session.cycle().committed());
         },
         [] {});
     const SentPlan<V> sent = session.send_plan(out);

@@ -20,6 +20,12 @@ Status PathSelectionConfig::validate() const {
   if (!(std::isfinite(length_weight_per_m) && length_weight_per_m >= 0.0)) {
     return bad("length_weight_per_m", length_weight_per_m, "finite and >= 0");
   }
+  if (!(std::isfinite(reference_speed_m_s) && reference_speed_m_s >= 0.0)) {
+    return bad("reference_speed_m_s", reference_speed_m_s, "finite and >= 0");
+  }
+  if (!(std::isfinite(course_change_m) && course_change_m >= 0.0)) {
+    return bad("course_change_m", course_change_m, "finite and >= 0");
+  }
   if (!(std::isfinite(sample_step_s) && sample_step_s > 0.0)) {
     return bad("sample_step_s", sample_step_s, "finite and > 0");
   }
@@ -47,9 +53,15 @@ PathSelector::PathSelector(int width_cells, int height_cells, double resolution_
       config_(config),
       d_(static_cast<std::size_t>(max_edges) * kMaxTargetCells),
       length_(max_edges),
-      stack_(max_edges) {
+      stack_(max_edges),
+      on_course_(max_edges),
+      below_course_(max_edges) {
   for (std::size_t i = 0; i < d_.capacity(); ++i) GRIP_ASSERT(d_.push_back(0.0F));
   for (std::size_t e = 0; e < length_.capacity(); ++e) GRIP_ASSERT(length_.push_back(0.0));
+  for (std::uint32_t e = 0; e < max_edges; ++e) {
+    GRIP_ASSERT(on_course_.push_back(0U));
+    GRIP_ASSERT(below_course_.push_back(0U));
+  }
 }
 
 Result<TargetSight> PathSelector::create_sight() const {
@@ -58,7 +70,7 @@ Result<TargetSight> PathSelector::create_sight() const {
 
 template <VehicleModel V>
 PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& sight,
-                                std::uint32_t min_step) noexcept {
+                                std::uint32_t min_step, TreeState course) noexcept {
   const auto& tree = planner.tree();
   GRIP_ASSERT(tree.edge_capacity() <= max_edges_);
   GRIP_ASSERT(planner.rho_field().width() == width_ && planner.rho_field().height() == height_);
@@ -79,6 +91,26 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
   PathChoice by_rho;
   bool seen_any = false;
 
+  // The course: the edges from the root to the last plan's end, marked for this call. A state
+  // is on it when its edge is, or lies below the plan's end; any other state leaves it.
+  course = resolve(tree, course);
+  if (course.edge != kNoHandle && course.edge != tree.root()) {
+    if (++course_mark_ == 0) {
+      std::fill(on_course_.begin(), on_course_.end(), 0U);
+      course_mark_ = 1;
+    }
+    for (EdgeHandle e = course.edge; e != kNoHandle; e = tree.edge(e).parent) {
+      on_course_[e] = course_mark_;
+    }
+  } else {
+    course.edge = kNoHandle;
+  }
+  const double leave_growth = std::exp(lambda * config_.course_change_m);
+  // l(tr) as the distance covered at the reference speed in tr's duration, when there is one.
+  const bool by_duration = config_.reference_speed_m_s > 0.0;
+  const double duration_cost_m_per_step =
+      config_.reference_speed_m_s * planner.config().integration_step_s;
+
   // Folds the state at (x, y) into the vector d and its sum. Most states see nothing (one mask
   // read); a seen target costs a squared distance, and a square root only when it improves.
   const auto fold = [&](float* d, double& d_sum, std::uint32_t& unseen, double x, double y) {
@@ -98,9 +130,9 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
   };
   // One exponential per state serves both candidates: w = d exp(lambda l).
   const auto offer = [&](EdgeHandle e, std::uint16_t k, const auto& q, double d_sum,
-                         std::uint32_t unseen, double length) {
+                         std::uint32_t unseen, double l_m, bool kept) {
     if (tree.step_of(e, k) < min_step) return;
-    const double growth = std::exp(lambda * length);
+    const double growth = std::exp(lambda * l_m) * (kept ? 1.0 : leave_growth);
     // rho_A* bounds rho from below: a state that loses to both candidates even with it needs
     // no more than that lookup.
     const double rho_bound = planner.rho_a_star_m(q);
@@ -116,13 +148,13 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
     const double d_all = d_sum + static_cast<double>(unseen) * rho_end;
     const double by_sight_weight = d_all * growth;
     if (by_sight_weight < by_sight.weight) {
-      by_sight = PathChoice{TreeState{e, k}, d_all, length, by_sight_weight, true};
+      by_sight = PathChoice{TreeState{e, k}, d_all, l_m, by_sight_weight, true};
     }
     const double by_rho_weight = rho_end * growth;
     // Without sight of the target, only a trajectory that ends closer to F than the root is a
     // candidate (see the file comment of path_selector.hpp: no creeping at a dead end).
     if (rho_end < root_rho && by_rho_weight < by_rho.weight) {
-      by_rho = PathChoice{TreeState{e, k}, rho_end, length, by_rho_weight, false};
+      by_rho = PathChoice{TreeState{e, k}, rho_end, l_m, by_rho_weight, false};
     }
   };
 
@@ -135,6 +167,11 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
       GRIP_ASSERT(stack_.push_back(c));  // every edge once: at most the edge pool
     }
     const Edge& edge = tree.edge(e);
+    // Below the course's end, or on the course, or no course at all: the course is kept.
+    below_course_[e] = course.edge != kNoHandle && edge.parent != kNoHandle &&
+                       (edge.parent == course.edge || below_course_[edge.parent] != 0U);
+    const bool kept =
+        course.edge == kNoHandle || below_course_[e] != 0U || on_course_[e] == course_mark_;
     float* d = d_.data() + static_cast<std::size_t>(e) * kMaxTargetCells;
     double length = 0.0;
     if (edge.parent == kNoHandle) {
@@ -163,7 +200,10 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
       px = x;
       py = y;
       fold(d, d_sum, unseen, x, y);
-      offer(e, static_cast<std::uint16_t>(k), q, d_sum, unseen, length);
+      const double l_m =
+          by_duration ? duration_cost_m_per_step * tree.step_of(e, static_cast<std::uint16_t>(k))
+                      : length;
+      offer(e, static_cast<std::uint16_t>(k), q, d_sum, unseen, l_m, kept);
       if (k == edge.last) break;
       k = std::min<int>(k + stride, edge.last);
     }
@@ -173,10 +213,10 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
 }
 
 template PathChoice PathSelector::select(const Planner<DdVelocity>&, const TargetSight&,
-                                         std::uint32_t) noexcept;
+                                         std::uint32_t, TreeState) noexcept;
 template PathChoice PathSelector::select(const Planner<DdAcceleration>&, const TargetSight&,
-                                         std::uint32_t) noexcept;
-template PathChoice PathSelector::select(const Planner<Car>&, const TargetSight&,
-                                         std::uint32_t) noexcept;
+                                         std::uint32_t, TreeState) noexcept;
+template PathChoice PathSelector::select(const Planner<Car>&, const TargetSight&, std::uint32_t,
+                                         TreeState) noexcept;
 
 }  // namespace grip

@@ -147,7 +147,8 @@ CycleOutcome PlanningSide<V>::plan_cycle(std::int64_t start_ns, const MapChanges
   }
   const auto now = [] { return platform::now_ns(); };
   const auto choose = [this, &session](const Planner<V>& planner) {
-    return exploring_ ? driver_->choose_plan_end(planner, session.cycle().cycle_steps())
+    return exploring_ ? driver_->choose_plan_end(planner, session.cycle().cycle_steps(),
+                                                 session.cycle().committed())
                       : planner.best_state();
   };
   const auto announce_plan = [this] {

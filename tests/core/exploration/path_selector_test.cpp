@@ -211,6 +211,98 @@ TEST_F(PathSelectorTest, NoTrajectoryLastingTMeansNoChoice) {
   EXPECT_EQ(selector->select(*planner, *sight, deepest + 1).state.edge, kNoHandle);
 }
 
+// With a reference speed, l(tr) is the distance at that speed in tr's duration: of two
+// trajectories that end equally well, the faster weighs less.
+TEST_F(PathSelectorTest, AReferenceSpeedWeighsTheDurationInsteadOfTheLength) {
+  grow(2.0, 1.0, 1500);
+  const std::uint32_t min_step = 20;
+  PathSelectionConfig timed = config;
+  timed.reference_speed_m_s = 1.5;
+  auto by_time = PathSelector::create(80, 60, 0.1, 4000, timed).value();
+  auto timed_sight = by_time.create_sight().value();
+  timed_sight.set_target(grid, frontiers->target_cells());
+  const PathChoice choice = by_time.select(*planner, timed_sight, min_step);
+  ASSERT_NE(choice.state.edge, kNoHandle);
+  const double step_s = planner->config().integration_step_s;
+  double minimum = std::numeric_limits<double>::infinity();
+  for_each_state([&](TreeState s, std::uint32_t step) {
+    if (step < min_step) return;
+    const Reference r = reference(s, true);
+    const double l_m = timed.reference_speed_m_s * step_s * static_cast<double>(step);
+    minimum = std::min(minimum, r.d_m * std::exp(config.length_weight_per_m * l_m));
+  });
+  EXPECT_NEAR(choice.weight, minimum, 1e-5 * minimum);
+  EXPECT_NEAR(choice.length_m,
+              timed.reference_speed_m_s * step_s *
+                  planner->tree().step_of(choice.state.edge, choice.state.index),
+              1e-9);
+  // The length chooses another trajectory on this tree: speed decided between them.
+  const TreeState by_length = selector->select(*planner, *sight, min_step).state;
+  EXPECT_FALSE(by_length.edge == choice.state.edge && by_length.index == choice.state.index);
+}
+
+// Whether the trajectory to s keeps the course that ends at c: s lies on the path to c, or c on
+// the path to s (both resolved states).
+bool keeps_course(const Tree<DdVelocity::State>& tree, TreeState s, TreeState c) {
+  const auto on_path_to = [&](TreeState a, TreeState b) {  // a on the path from the root to b
+    for (EdgeHandle e = b.edge; e != kNoHandle; e = tree.edge(e).parent) {
+      if (e == a.edge) return e != b.edge || a.index <= b.index;
+    }
+    return false;
+  };
+  return on_path_to(s, c) || on_path_to(c, s);
+}
+
+TEST_F(PathSelectorTest, LeavingTheLastCourseCostsItsLengthInTheWeight) {
+  grow(2.0, 1.0, 1500);
+  const std::uint32_t min_step = 20;
+  const TreeState best = selector->select(*planner, *sight, min_step).state;
+  ASSERT_NE(best.edge, kNoHandle);
+  // The course: the last state of a deep edge that branches off the best trajectory.
+  TreeState course;
+  std::uint32_t deepest = 0;
+  planner->visit_edges([&](EdgeHandle e, const Edge& edge) {
+    const TreeState end{e, edge.last};
+    const std::uint32_t step = planner->tree().step_of(e, edge.last);
+    if (edge.parent != kNoHandle && step > deepest && !keeps_course(planner->tree(), best, end)) {
+      deepest = step;
+      course = end;
+    }
+  });
+  ASSERT_NE(course.edge, kNoHandle);
+  for (const double change_m : {0.0, 2.0, 50.0}) {
+    PathSelectionConfig with_change = config;
+    with_change.course_change_m = change_m;
+    auto kept = PathSelector::create(80, 60, 0.1, 4000, with_change).value();
+    auto kept_sight = kept.create_sight().value();
+    kept_sight.set_target(grid, frontiers->target_cells());
+    const PathChoice choice = kept.select(*planner, kept_sight, min_step, course);
+    ASSERT_NE(choice.state.edge, kNoHandle);
+    // The brute-force minimum, a trajectory off the course weighing exp(lambda change) more.
+    double minimum = std::numeric_limits<double>::infinity();
+    TreeState argmin;
+    for_each_state([&](TreeState s, std::uint32_t step) {
+      if (step < min_step) return;
+      const double off = keeps_course(planner->tree(), s, course) ? 0.0 : change_m;
+      const double w = reference(s, true).weight * std::exp(config.length_weight_per_m * off);
+      if (w < minimum) {
+        minimum = w;
+        argmin = s;
+      }
+    });
+    EXPECT_NEAR(choice.weight, minimum, 1e-5 * minimum) << change_m;
+    EXPECT_EQ(keeps_course(planner->tree(), choice.state, course),
+              keeps_course(planner->tree(), argmin, course))
+        << change_m;
+    if (change_m == 0.0) {
+      EXPECT_FALSE(keeps_course(planner->tree(), choice.state, course));
+    }
+    if (change_m == 50.0) {
+      EXPECT_TRUE(keeps_course(planner->tree(), choice.state, course));
+    }
+  }
+}
+
 // A corridor 16 m long whose far end is unknown: a tree that has just come within sensing range
 // of the frontier sees only the few cells straight ahead, at the edge of the range. Standing
 // still must not be the best choice then (with d_max alone for an unseen cell it was: the
@@ -256,6 +348,14 @@ TEST(PathSelectionConfigTest, BadValuesAreRefusedByName) {
   config.length_weight_per_m = -0.1;
   EXPECT_FALSE(PathSelector::create(10, 10, 0.1, 100, config).ok());
   EXPECT_FALSE(PathSelector::create(10, 10, 0.1, 0, PathSelectionConfig{}).ok());
+  config = PathSelectionConfig{};
+  config.reference_speed_m_s = -1.0;
+  EXPECT_FALSE(PathSelector::create(10, 10, 0.1, 100, config).ok());
+  config = PathSelectionConfig{};
+  config.course_change_m = -1.0;
+  const auto negative = PathSelector::create(10, 10, 0.1, 100, config);
+  ASSERT_FALSE(negative.ok());
+  EXPECT_NE(negative.error().message.find("course_change_m"), std::string::npos);
 }
 
 }  // namespace

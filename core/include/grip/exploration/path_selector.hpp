@@ -4,7 +4,8 @@
 //   d(tr, c) = rho_A*(q, c) for the state q of tr nearest to c among those that see c, else
 //              d_max + rho(end of tr, F)
 //   d(tr)    = sum over c of d(tr, c)
-//   w(tr)    = d(tr) * exp(lambda * l(tr)),  l(tr) the length of tr,
+//   w(tr)    = d(tr) * exp(lambda * l(tr)),  l(tr) the length of tr (or its duration at a
+//              reference speed: PathSelectionConfig::reference_speed_m_s),
 // and the selector returns the minimum-weight state at least T (min_step) from the root. The
 // paper has d_max alone for an unseen cell; then a trajectory that sees a few cells loses to
 // one that barely moves (its length costs more than the cells gain), and the robot stalls where
@@ -54,8 +55,19 @@ struct PathSelectionConfig {
   double sensing_radius_m = 3.0;      // d_max: the sensor's range (one tenth of the scene)
   double length_weight_per_m = 0.05;  // lambda: a trajectory 14 m longer weighs twice as much
   double sample_step_s = 0.2;         // states sampled along each edge this far apart in time
+  // > 0: l(tr) is the distance covered at this speed [m/s] in tr's duration rather than tr's
+  // length, so that of two trajectories to the same place the faster one weighs less. The
+  // paper's length leaves speed out of the choice, and a vehicle whose speed changes at a
+  // bounded rate then drives at the speed of whichever trajectory ends best, well below what
+  // braking allows. 0: the length.
+  double reference_speed_m_s = 0.0;
+  // A trajectory that leaves the course of the last plan weighs as if it were this much longer
+  // (select's `course`). Without it the choice can flip between branches of nearly equal
+  // weight from one cycle to the next, and the vehicle steers toward each in turn.
+  double course_change_m = 2.0;
 
-  // Errors name the bad value: any value not finite or not > 0 (lambda may be 0).
+  // Errors name the bad value: any value not finite or not > 0 (lambda, the reference speed
+  // and the course change may be 0).
   Status validate() const;
 };
 
@@ -64,7 +76,7 @@ struct PathChoice {
   TreeState state;  // empty when no state of the tree is min_step or more from the root, or
                     // none sees the target and none ends closer to F than the root
   double d_m = std::numeric_limits<double>::infinity();  // d(tr) (or rho at its end)
-  double length_m = 0.0;                                 // l(tr) over the sampled states
+  double length_m = 0.0;  // l(tr) over the sampled states (or reference speed x duration)
   double weight = std::numeric_limits<double>::infinity();
   bool sees_target = false;  // some tree state sees a target cell: d is the visibility sum
 };
@@ -83,11 +95,13 @@ class PathSelector {
 
   // The minimum-weight trajectory whose end is at least min_step integration steps from the
   // root (duration >= T), the target cells c and what sees them from `sight` (one of
-  // create_sight()'s). The planner must plan on a grid of this selector's size with at most
-  // max_edges edges (asserted).
+  // create_sight()'s). `course`: the end of the plan committed last (ReplanningCycle::
+  // committed), or empty; trajectories that branch off the path to it weigh as if
+  // course_change_m longer. The planner must plan on a grid of this selector's size with at
+  // most max_edges edges (asserted).
   template <VehicleModel V>
-  PathChoice select(const Planner<V>& planner, const TargetSight& sight,
-                    std::uint32_t min_step) noexcept;
+  PathChoice select(const Planner<V>& planner, const TargetSight& sight, std::uint32_t min_step,
+                    TreeState course = {}) noexcept;
 
   const PathSelectionConfig& config() const noexcept { return config_; }
 
@@ -100,9 +114,12 @@ class PathSelector {
   double resolution_;
   std::uint32_t max_edges_;
   PathSelectionConfig config_;
-  BoundedVector<float> d_;           // per edge: d(tr, c) at its last sampled state
-  BoundedVector<double> length_;     // per edge: l(tr) at its last state
-  BoundedVector<EdgeHandle> stack_;  // the pre-order walk
+  BoundedVector<float> d_;                    // per edge: d(tr, c) at its last sampled state
+  BoundedVector<double> length_;              // per edge: l(tr) at its last state
+  BoundedVector<EdgeHandle> stack_;           // the pre-order walk
+  BoundedVector<std::uint32_t> on_course_;    // per edge: course_mark_ when on the course
+  BoundedVector<std::uint8_t> below_course_;  // per edge: below the course's end
+  std::uint32_t course_mark_ = 0;
 };
 
 }  // namespace grip

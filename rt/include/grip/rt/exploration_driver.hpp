@@ -60,7 +60,9 @@ class ExplorationDriver {
   bool serve_request() noexcept;
 
   // The state the plan leads to: the path selector's choice, or the root once explored.
-  TreeState choose_plan_end(const Planner<V>& planner, std::uint32_t cycle_steps) noexcept;
+  // `course`: the end of the plan committed last (ReplanningCycle::committed).
+  TreeState choose_plan_end(const Planner<V>& planner, std::uint32_t cycle_steps,
+                            TreeState course) noexcept;
 
   ExplorationDriver(ExplorationDriver&& other) noexcept;  // start-up only: not while in use
   ExplorationDriver& operator=(ExplorationDriver&&) = delete;
