@@ -62,9 +62,10 @@ struct PathSelectionConfig {
   // braking allows. 0: the length.
   double reference_speed_m_s = 0.0;
   // A trajectory that leaves the course of the last plan weighs as if it were this much longer
-  // (select's `course`). Without it the choice can flip between branches of nearly equal
-  // weight from one cycle to the next, and the vehicle steers toward each in turn.
-  double course_change_m = 2.0;
+  // (select's `course`), so that the choice does not flip between branches of nearly equal
+  // weight from one cycle to the next, the vehicle steering toward each in turn. 0: the paper's
+  // choice, made afresh every cycle.
+  double course_change_m = 0.0;
 
   // Errors name the bad value: any value not finite or not > 0 (lambda, the reference speed
   // and the course change may be 0).
