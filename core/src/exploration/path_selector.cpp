@@ -54,14 +54,10 @@ PathSelector::PathSelector(int width_cells, int height_cells, double resolution_
       d_(static_cast<std::size_t>(max_edges) * kMaxTargetCells),
       length_(max_edges),
       stack_(max_edges),
-      on_course_(max_edges),
-      below_course_(max_edges) {
+      course_(max_edges) {
   for (std::size_t i = 0; i < d_.capacity(); ++i) GRIP_ASSERT(d_.push_back(0.0F));
   for (std::size_t e = 0; e < length_.capacity(); ++e) GRIP_ASSERT(length_.push_back(0.0));
-  for (std::uint32_t e = 0; e < max_edges; ++e) {
-    GRIP_ASSERT(on_course_.push_back(0U));
-    GRIP_ASSERT(below_course_.push_back(0U));
-  }
+  for (std::size_t e = 0; e < course_.capacity(); ++e) GRIP_ASSERT(course_.push_back(kOffCourse));
 }
 
 Result<TargetSight> PathSelector::create_sight() const {
@@ -91,20 +87,15 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
   PathChoice by_rho;
   bool seen_any = false;
 
-  // The course: the edges from the root to the last plan's end, marked for this call. A state
-  // is on it when its edge is, or lies below the plan's end; any other state leaves it.
-  course = resolve(tree, course);
-  if (course.edge != kNoHandle && course.edge != tree.root()) {
-    if (++course_mark_ == 0) {
-      std::fill(on_course_.begin(), on_course_.end(), 0U);
-      course_mark_ = 1;
-    }
-    for (EdgeHandle e = course.edge; e != kNoHandle; e = tree.edge(e).parent) {
-      on_course_[e] = course_mark_;
-    }
-  } else {
-    course.edge = kNoHandle;
-  }
+  // The course: the edges from the root to the last plan's end are marked for this call (and
+  // unmarked at its end); the pass marks the edges below the plan's end. A state keeps the
+  // course when its edge is marked either way.
+  course = config_.course_change_m > 0.0 ? resolve(tree, course) : TreeState{};
+  if (course.edge == tree.root()) course = TreeState{};
+  const auto mark_course = [&](std::uint8_t mark) {
+    for (EdgeHandle e = course.edge; e != kNoHandle; e = tree.edge(e).parent) course_[e] = mark;
+  };
+  mark_course(kOnCourse);
   const double leave_growth = std::exp(lambda * config_.course_change_m);
   // l(tr) as the distance covered at the reference speed in tr's duration, when there is one.
   const bool by_duration = config_.reference_speed_m_s > 0.0;
@@ -167,11 +158,13 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
       GRIP_ASSERT(stack_.push_back(c));  // every edge once: at most the edge pool
     }
     const Edge& edge = tree.edge(e);
-    // Below the course's end, or on the course, or no course at all: the course is kept.
-    below_course_[e] = course.edge != kNoHandle && edge.parent != kNoHandle &&
-                       (edge.parent == course.edge || below_course_[edge.parent] != 0U);
-    const bool kept =
-        course.edge == kNoHandle || below_course_[e] != 0U || on_course_[e] == course_mark_;
+    if (course_[e] != kOnCourse) {
+      course_[e] = course.edge != kNoHandle && edge.parent != kNoHandle &&
+                           (edge.parent == course.edge || course_[edge.parent] == kBelowCourse)
+                       ? kBelowCourse
+                       : kOffCourse;
+    }
+    const bool kept = course.edge == kNoHandle || course_[e] != kOffCourse;
     float* d = d_.data() + static_cast<std::size_t>(e) * kMaxTargetCells;
     double length = 0.0;
     if (edge.parent == kNoHandle) {
@@ -209,6 +202,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
     }
     length_[e] = length;
   }
+  mark_course(kOffCourse);
   return seen_any ? by_sight : by_rho;
 }
 

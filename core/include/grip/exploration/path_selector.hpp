@@ -115,12 +115,14 @@ class PathSelector {
   double resolution_;
   std::uint32_t max_edges_;
   PathSelectionConfig config_;
-  BoundedVector<float> d_;                    // per edge: d(tr, c) at its last sampled state
-  BoundedVector<double> length_;              // per edge: l(tr) at its last state
-  BoundedVector<EdgeHandle> stack_;           // the pre-order walk
-  BoundedVector<std::uint32_t> on_course_;    // per edge: course_mark_ when on the course
-  BoundedVector<std::uint8_t> below_course_;  // per edge: below the course's end
-  std::uint32_t course_mark_ = 0;
+  BoundedVector<float> d_;           // per edge: d(tr, c) at its last sampled state
+  BoundedVector<double> length_;     // per edge: l(tr) at its last state
+  BoundedVector<EdgeHandle> stack_;  // the pre-order walk
+  // Per edge, within select(): on the path to the last plan's end, below it, or neither.
+  static constexpr std::uint8_t kOffCourse = 0;
+  static constexpr std::uint8_t kOnCourse = 1;
+  static constexpr std::uint8_t kBelowCourse = 2;
+  BoundedVector<std::uint8_t> course_;
 };
 
 }  // namespace grip
