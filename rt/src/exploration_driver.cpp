@@ -5,11 +5,12 @@
 namespace grip::rt {
 
 namespace {
-// An acceleration-limited vehicle that turns in place weighs a trajectory by its duration at
-// this share of its top speed (PathSelectionConfig::reference_speed_m_s): about the speed
-// braking within its sensor's range allows, so a trajectory that keeps that speed weighs what
-// its length would. It keeps its course too (course_change_m). A car drove faster with both
-// but explored no sooner: it went further and over more of its own track.
+// Unless the configuration says otherwise, an acceleration-limited vehicle that turns in place
+// weighs a trajectory by its duration at this share of its top speed
+// (PathSelectionConfig::reference_speed_m_s): about the speed braking within its sensor's range
+// allows, so a trajectory that keeps that speed weighs what its length would. It keeps its
+// course too (course_change_m). A car drove faster with either but explored no sooner: it went
+// further and over more of its own track.
 constexpr double kReferenceSpeedShare = 2.0 / 3.0;
 constexpr double kCourseChangeM = 2.0;
 }  // namespace
@@ -31,11 +32,20 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
   auto target = ExplorationTarget::create(grid, target_config);
   if (!target) return target.error();
   PathSelectionConfig selection;
+  selection.length_weight_per_m = config.length_weight_per_m;
+  selection.reference_speed_m_s = config.reference_speed_m_s;
+  selection.course_change_m = config.course_change_m;
+  bool turns_in_place_at_bounded_acceleration = false;
   if constexpr (LimitsAcceleration<V>) {
-    if (vehicle.min_turning_radius_m() == 0.0) {
-      selection.reference_speed_m_s = kReferenceSpeedShare * vehicle.max_speed_m_s();
-      selection.course_change_m = kCourseChangeM;
-    }
+    turns_in_place_at_bounded_acceleration = vehicle.min_turning_radius_m() == 0.0;
+  }
+  if (selection.reference_speed_m_s < 0.0) {
+    selection.reference_speed_m_s = turns_in_place_at_bounded_acceleration
+                                        ? kReferenceSpeedShare * vehicle.max_speed_m_s()
+                                        : 0.0;
+  }
+  if (selection.course_change_m < 0.0) {
+    selection.course_change_m = turns_in_place_at_bounded_acceleration ? kCourseChangeM : 0.0;
   }
   selection.sensing_radius_m =
       config.sensing_radius_m > 0.0 ? config.sensing_radius_m : grid.width_m() / 10.0;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -65,6 +66,9 @@ GripParams all_changed(VehicleKind kind) {
   p.planner.safety = false;
   p.sensor = {7.25, 360};
   p.exploration.sensing_radius_m = 4.4;
+  p.exploration.length_weight_per_m = 1.0 / 30.0;
+  p.exploration.reference_speed_m_s = 4.0 / 3.0;
+  p.exploration.course_change_m = 0.1 + 0.2;
   p.exploration.frontier.approach_range_m = 0.61;
   p.exploration.frontier.size_weight = 0.25;
   p.exploration.frontier.size_cap_m = 3.5;
@@ -124,8 +128,10 @@ TEST(ParamsYaml, ASetWithEveryValueChangedReadsBackToTheSameValues) {
 
 TEST(ParamsYaml, DerivedValuesAreWrittenAsAutoAndANumberForThemIsTakenAsGiven) {
   const std::string yaml = to_yaml(default_params(VehicleKind::kCar));
-  for (const char* line : {"  margin_s: auto", "  max_edges: auto", "  range_m: auto",
-                           "  rays: auto", "  sensing_radius_m: auto", "  cpu: auto"}) {
+  for (const char* line :
+       {"  margin_s: auto", "  max_edges: auto", "  range_m: auto", "  rays: auto",
+        "  sensing_radius_m: auto", "    reference_speed_m_s: auto", "    course_change_m: auto",
+        "  cpu: auto"}) {
     EXPECT_NE(yaml.find(std::string(line) + "  #"), std::string::npos) << line;
   }
 
@@ -133,6 +139,7 @@ TEST(ParamsYaml, DerivedValuesAreWrittenAsAutoAndANumberForThemIsTakenAsGiven) {
       "vehicle: {model: car}\n"
       "planner: {margin_s: 0.004, max_edges: 5000}\n"
       "sensor: {range_m: 0, rays: 720}\n"
+      "exploration: {path_weight: {reference_speed_m_s: 0, course_change_m: 1.5}}\n"
       "runtime: {cpu: -1}\n",
       "numbers.yaml");
   ASSERT_TRUE(read.ok()) << read.error().message;
@@ -140,6 +147,8 @@ TEST(ParamsYaml, DerivedValuesAreWrittenAsAutoAndANumberForThemIsTakenAsGiven) {
   EXPECT_EQ(read->planner.max_edges, 5000U);
   EXPECT_EQ(read->sensor.range_m, 0.0);
   EXPECT_EQ(read->sensor.rays, 720U);
+  EXPECT_EQ(read->exploration.reference_speed_m_s, 0.0);
+  EXPECT_EQ(read->exploration.course_change_m, 1.5);
   EXPECT_EQ(read->runtime.cpu, -1);
 }
 
@@ -213,6 +222,16 @@ TEST(ParamsValidate, ASetBuiltInCodeIsRefusedByTheKeyOfItsFirstValueOutOfRange) 
   p = default_params(VehicleKind::kDdVelocity);
   p.planner.tuning.rho_cell_m = -0.1;
   EXPECT_TRUE(message_for(p).starts_with("planner.rho_cell_m must be")) << message_for(p);
+
+  p = default_params(VehicleKind::kDdAcceleration);
+  p.exploration.reference_speed_m_s = -0.5;
+  EXPECT_EQ(
+      message_for(p),
+      "exploration.path_weight.reference_speed_m_s must be auto or finite and >= 0 (got -0.5)");
+  p = default_params(VehicleKind::kDdAcceleration);
+  p.exploration.length_weight_per_m = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(message_for(p).starts_with("exploration.path_weight.length_weight_per_m must be"))
+      << message_for(p);
 
   p = default_params(VehicleKind::kDdVelocity);
   p.sensor.rays = 8;

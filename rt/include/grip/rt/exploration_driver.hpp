@@ -34,6 +34,12 @@ struct ExplorationDriverConfig {
   // time to grow, is carried over in between.
   std::uint32_t refresh_cycles = 5;
   double sensing_radius_m = 0.0;  // d_max of the path weight; 0: a tenth of the map's width
+  // The rest of the path weight (PathSelectionConfig): lambda, l's reference speed and the cost
+  // of leaving the last plan's course. A reference speed or course change < 0: the vehicle's
+  // (create()).
+  double length_weight_per_m = PathSelectionConfig{}.length_weight_per_m;
+  double reference_speed_m_s = -1.0;
+  double course_change_m = -1.0;
 };
 
 template <VehicleModel V>
@@ -66,6 +72,9 @@ class ExplorationDriver {
 
   ExplorationDriver(ExplorationDriver&& other) noexcept;  // start-up only: not while in use
   ExplorationDriver& operator=(ExplorationDriver&&) = delete;
+
+  // The path weight in use: the configuration's, the vehicle's where it said "auto".
+  const PathSelectionConfig& path_weight() const noexcept { return selector_.config(); }
 
   // Exploration ended: no reachable frontier remained.
   bool explored() const noexcept { return explored_; }
