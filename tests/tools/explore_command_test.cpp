@@ -78,6 +78,32 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
                    static_cast<double>(above_50) / n);
   EXPECT_DOUBLE_EQ(r.at("time_fraction_above_80pct_max_speed").get<double>(),
                    static_cast<double>(above_80) / n);
+  // Coverage grew from the start's to the report's, in time; each mark's time is the first
+  // sample at or above it, null when the run never got there.
+  const auto& coverage = r.at("coverage_profile");
+  ASSERT_FALSE(coverage.empty());
+  EXPECT_EQ(coverage.front().at(0).get<double>(), 0.0);
+  EXPECT_EQ(coverage.back().at(1).get<double>(), r.at("coverage").get<double>());
+  EXPECT_LE(coverage.back().at(0).get<double>(), r.at("sim_time_s").get<double>());
+  for (std::size_t i = 1; i < coverage.size(); ++i) {
+    EXPECT_GT(coverage[i].at(0).get<double>(), coverage[i - 1].at(0).get<double>());
+    EXPECT_GT(coverage[i].at(1).get<double>(), coverage[i - 1].at(1).get<double>());
+  }
+  for (const auto& [key, share] :
+       {std::pair{"0.5", 0.5}, std::pair{"0.9", 0.9}, std::pair{"0.97", 0.97}}) {
+    const nlohmann::json& reached = r.at("time_to_coverage_s").at(key);
+    const auto first = std::find_if(coverage.begin(), coverage.end(), [&](const auto& sample) {
+      return sample.at(1).template get<double>() >= share;
+    });
+    if (first == coverage.end()) {
+      EXPECT_TRUE(reached.is_null()) << key;
+    } else {
+      EXPECT_EQ(reached.get<double>(), first->at(0).get<double>()) << key;
+    }
+  }
+  if (r.at("result") == "complete") {
+    EXPECT_FALSE(r.at("time_to_coverage_s").at("0.97").is_null());
+  }
 }
 
 // The cycle trace: a header and one row per planning cycle, numbered from 0, each row's phases

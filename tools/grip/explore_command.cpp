@@ -172,6 +172,20 @@ nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
   j["speed_profile"] = profile;
   j["braking_bound_profile"] = r.braking_bound_profile;
   j["turning_bound_profile"] = r.turning_bound_profile;
+  // Coverage as it grew, and when it first reached half, 0.9 and complete's share: how much of a
+  // run the last pockets took.
+  nlohmann::json coverage = nlohmann::json::array();
+  for (const auto& sample : r.coverage_profile) coverage.push_back({sample[0], sample[1]});
+  j["coverage_profile"] = coverage;
+  nlohmann::json reached = nlohmann::json::object();
+  for (const auto& [key, share] :
+       {std::pair{"0.5", 0.5}, std::pair{"0.9", 0.9}, std::pair{"0.97", sim::kCompleteCoverage}}) {
+    const auto first = std::find_if(r.coverage_profile.begin(), r.coverage_profile.end(),
+                                    [share](const auto& sample) { return sample[1] >= share; });
+    reached[key] =
+        first == r.coverage_profile.end() ? nlohmann::json() : nlohmann::json((*first)[0]);
+  }
+  j["time_to_coverage_s"] = reached;
   if (r.max_speed_m_s > 0.0) {
     const SpeedProfileSummary speed = summarize_speed_profile(r.speed_profile, r.max_speed_m_s);
     j["time_fraction_above_50pct_max_speed"] = speed.fraction_above_50;

@@ -189,6 +189,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     ++report.plans_received;
   };
   double best_coverage = coverage_of(sensed, *reachable);
+  report.coverage_profile.push_back({t_sim(), best_coverage});
   // Progress: coverage gained, or, while none is, the way to unsensed ground shortened by a
   // metre (checked once a simulated second after 10 s without coverage). A vehicle driving to
   // the last frontier of a maze senses nothing new for minutes and is not stuck; one circling
@@ -222,6 +223,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       const double coverage = coverage_of(sensed, *reachable);
       if (coverage > best_coverage + 1e-9) {
         best_coverage = coverage;
+        report.coverage_profile.push_back({t_sim(), coverage});
         progress_at = t_sim();
         nearest_unsensed_m = std::numeric_limits<double>::infinity();
       }
@@ -361,6 +363,9 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
 
   const ExecutorStats& stats = executor->stats();
   report.coverage = coverage_of(sensed, *reachable);
+  if (report.coverage > report.coverage_profile.back()[1]) {
+    report.coverage_profile.push_back({t_sim(), report.coverage});
+  }
   report.collisions = stats.collisions;
   for (const CollisionEvent& e : executor->collision_events()) {
     report.collision_events.push_back(

@@ -132,8 +132,10 @@ struct SimRunReport {
   double wall_time_s = 0.0;
   std::vector<std::array<double, 2>> trajectory;     // (x, y) per tick
   std::vector<std::array<double, 2>> speed_profile;  // (t, |v|) per tick
-  std::vector<double> braking_bound_profile;         // [m/s] per tick; empty: stops at once
-  std::vector<double> turning_bound_profile;         // [m/s] per tick; empty: stops at once
+  // (t, coverage) whenever coverage grew (looked at every 20 ticks), from the start's.
+  std::vector<std::array<double, 2>> coverage_profile;
+  std::vector<double> braking_bound_profile;  // [m/s] per tick; empty: stops at once
+  std::vector<double> turning_bound_profile;  // [m/s] per tick; empty: stops at once
   double max_speed_m_s = 0.0;
   std::optional<OccupancyGrid> known;  // what was sensed
   std::optional<grip_msg_PlannerStatus> last_status;
