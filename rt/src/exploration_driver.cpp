@@ -39,12 +39,12 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
   if constexpr (LimitsAcceleration<V>) {
     turns_in_place_at_bounded_acceleration = vehicle.min_turning_radius_m() == 0.0;
   }
-  if (selection.reference_speed_m_s < 0.0) {
+  if (selection.reference_speed_m_s == kPathWeightOfVehicle) {
     selection.reference_speed_m_s = turns_in_place_at_bounded_acceleration
                                         ? kReferenceSpeedShare * vehicle.max_speed_m_s()
                                         : 0.0;
   }
-  if (selection.course_change_m < 0.0) {
+  if (selection.course_change_m == kPathWeightOfVehicle) {
     selection.course_change_m = turns_in_place_at_bounded_acceleration ? kCourseChangeM : 0.0;
   }
   selection.sensing_radius_m =

@@ -78,6 +78,14 @@ TEST(ExplorationDriver, ABadPathWeightIsRefusedByName) {
   ASSERT_FALSE(weight.ok());
   EXPECT_NE(weight.error().message.find("length_weight_per_m"), std::string::npos)
       << weight.error().message;
+
+  // Only kPathWeightOfVehicle stands for the vehicle's value: another negative one is an error.
+  ExplorationDriverConfig negative;
+  negative.reference_speed_m_s = -0.5;
+  const auto refused = path_weight_of(DdAcceleration::create({}).value(), negative);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("reference_speed_m_s"), std::string::npos)
+      << refused.error().message;
 }
 
 }  // namespace

@@ -85,7 +85,9 @@ void check_exploration(const SensorParams& s, const ExplorationParams& e, const 
   r.require(finite_non_negative(e.sensing_radius_m), e.sensing_radius_m,
             "finite and >= 0 (0: auto)");
   r.require(finite_non_negative(e.length_weight_per_m), e.length_weight_per_m, "finite and >= 0");
-  const auto auto_or_non_negative = [](double v) { return v == -1.0 || finite_non_negative(v); };
+  const auto auto_or_non_negative = [](double v) {
+    return v == kPathWeightOfVehicle || finite_non_negative(v);
+  };
   r.require(auto_or_non_negative(e.reference_speed_m_s), e.reference_speed_m_s,
             "auto or finite and >= 0");
   r.require(auto_or_non_negative(e.course_change_m), e.course_change_m, "auto or finite and >= 0");

@@ -28,4 +28,8 @@ struct PathSelectionConfig {
   Status validate() const;
 };
 
+// A reference speed or course change for the runtime to take from the vehicle
+// (rt::ExplorationDriver): "auto" in a parameter file.
+inline constexpr double kPathWeightOfVehicle = -1.0;
+
 }  // namespace grip

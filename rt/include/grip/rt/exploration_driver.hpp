@@ -35,11 +35,11 @@ struct ExplorationDriverConfig {
   std::uint32_t refresh_cycles = 5;
   double sensing_radius_m = 0.0;  // d_max of the path weight; 0: a tenth of the map's width
   // The rest of the path weight (PathSelectionConfig): lambda, l's reference speed and the cost
-  // of leaving the last plan's course. A reference speed or course change < 0: the vehicle's
-  // (create()).
+  // of leaving the last plan's course. kPathWeightOfVehicle: the vehicle's (create()); another
+  // negative value is refused.
   double length_weight_per_m = PathSelectionConfig{}.length_weight_per_m;
-  double reference_speed_m_s = -1.0;
-  double course_change_m = -1.0;
+  double reference_speed_m_s = kPathWeightOfVehicle;
+  double course_change_m = kPathWeightOfVehicle;
 };
 
 template <VehicleModel V>
