@@ -119,6 +119,11 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
       d[i] = distance;
     }
   };
+  // Without sight of the target: rho at the end, length weighed at most as at d_max (the file
+  // comment).
+  const auto by_rho_weight_of = [&](double rho, double growth) {
+    return rho + std::min(rho, static_cast<double>(d_max)) * (growth - 1.0);
+  };
   // One exponential per state serves both candidates: w = d exp(lambda l).
   const auto offer = [&](EdgeHandle e, std::uint16_t k, const auto& q, double d_sum,
                          std::uint32_t unseen, double l_m, bool kept) {
@@ -128,7 +133,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
     // no more than that lookup.
     const double rho_bound = planner.rho_a_star_m(q);
     if ((d_sum + static_cast<double>(unseen) * rho_bound) * growth >= by_sight.weight &&
-        !(rho_bound < root_rho && rho_bound * growth < by_rho.weight)) {
+        !(rho_bound < root_rho && by_rho_weight_of(rho_bound, growth) < by_rho.weight)) {
       return;
     }
     const double rho_end = planner.rho_m(q);
@@ -141,7 +146,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
     if (by_sight_weight < by_sight.weight) {
       by_sight = PathChoice{TreeState{e, k}, d_all, l_m, by_sight_weight, true};
     }
-    const double by_rho_weight = rho_end * growth;
+    const double by_rho_weight = by_rho_weight_of(rho_end, growth);
     // Without sight of the target, only a trajectory that ends closer to F than the root is a
     // candidate (see the file comment of path_selector.hpp: no creeping at a dead end).
     if (rho_end < root_rho && by_rho_weight < by_rho.weight) {

@@ -98,8 +98,13 @@ class PathSelectorTest : public ::testing::Test {
     const double rho_end = planner->rho_field().distance_m(px, py);
     r.d_m = 0.0;
     for (const double v : d) r.d_m += v < config.sensing_radius_m ? v : v + rho_end;
-    if (!by_sight) r.d_m = rho_end;
-    r.weight = r.d_m * std::exp(config.length_weight_per_m * r.length_m);
+    const double growth = std::exp(config.length_weight_per_m * r.length_m);
+    if (by_sight) {
+      r.weight = r.d_m * growth;
+    } else {
+      r.d_m = rho_end;
+      r.weight = rho_end + std::min(rho_end, config.sensing_radius_m) * (growth - 1.0);
+    }
     return r;
   }
   // Every state of the tree (TreeState) with its step from the root.
@@ -336,6 +341,50 @@ TEST(PathSelectorFromAfar, SeeingAFewFrontierCellsStillMovesTowardThem) {
   const auto& end = planner.tree().edge_state(choice.state.edge, choice.state.index);
   EXPECT_GT(end[0], 8.0) << "chose a trajectory of " << choice.length_m << " m ending at ("
                          << end[0] << ", " << end[1] << ")";
+}
+
+// A corridor 60 m long whose far end is unknown, the robot at the other end: no tree state sees
+// the frontier, rho is about 55 m. The choice must head for it, not take the shortest step that
+// ends any closer (with rho * exp(lambda l), beyond 20 m of rho every metre driven toward F
+// weighs more than it gains).
+TEST(PathSelectorFromAfar, FarFromTheFrontierTheChoiceHeadsForIt) {
+  OccupancyGrid grid = OccupancyGrid::create(600, 30, 0.1, 0.0, 0.0, Cell::kObstacle).value();
+  grid.fill_rect(0.3, 0.3, 59.7, 2.7, Cell::kFree);
+  grid.fill_rect(58.0, 0.3, 59.7, 2.7, Cell::kUnknown);
+  const DdVelocity robot = DdVelocity::create({}).value();
+  PlannerConfig pc;
+  pc.max_edges = 4000;
+  pc.max_trajectories = 2000;
+  pc.stop_at_goal = false;
+  auto planner = DdVelocityPlanner::create(robot, grid, pc).value();
+  auto frontiers = FrontierMap::create(600, 30, 0.1, FrontierConfig{}).value();
+  PathSelectionConfig config;
+  auto selector = PathSelector::create(600, 30, 0.1, pc.max_edges, config).value();
+  auto sight = selector.create_sight().value();
+  ASSERT_EQ(frontiers.update(grid, planner.checker().clearance(), 1.0, 1.5),
+            ExplorationStatus::kTarget);
+  ASSERT_TRUE(planner.set_problem(robot.rest_state(1.0, 1.5, 0.0),
+                                  Goal::cells(frontiers.approach_cells())));
+  sight.set_target(grid, frontiers.target_cells());
+  (void)planner.solve([&] { return planner.stats().edges_added >= 60; });
+  const PathChoice choice = selector.select(planner, sight, 20);
+  ASSERT_NE(choice.state.edge, kNoHandle);
+  ASSERT_FALSE(choice.sees_target);
+  const double root_rho = planner.rho_m(robot.rest_state(1.0, 1.5, 0.0));
+  ASSERT_GT(root_rho, 50.0);
+  // The most any trajectory of at least T gets closer.
+  double least_rho = root_rho;
+  planner.visit_edges([&](EdgeHandle e, const Edge& edge) {
+    for (int k = edge.first; k <= edge.last; ++k) {
+      const auto index = static_cast<std::uint16_t>(k);
+      if (planner.tree().step_of(e, index) < 20) continue;
+      least_rho = std::min(least_rho, planner.rho_m(planner.tree().edge_state(e, index)));
+    }
+  });
+  ASSERT_LT(least_rho, root_rho - 4.0) << "the tree hardly left the start";
+  EXPECT_LT(choice.d_m, root_rho - 0.75 * (root_rho - least_rho))
+      << "chose a trajectory of " << choice.length_m << " m, rho " << root_rho << " -> "
+      << choice.d_m << " m (the tree reaches " << least_rho << " m)";
 }
 
 TEST(PathSelectionConfigTest, BadValuesAreRefusedByName) {

@@ -19,7 +19,13 @@
 // way out begins by backing away from F, would choose the shortest trajectory of at least T
 // cycle after cycle: it creeps, and every re-rooting throws away the tree's attempts at a way
 // out. With it there is no choice, the vehicle stops, and the tree, kept at the resting root
-// (ReplanningCycle), grows on until it holds a way out.
+// (ReplanningCycle), grows on until it holds a way out. Without sight the weight is
+//   w(tr) = rho + min(rho, d_max) * (exp(lambda * l(tr)) - 1),  rho = rho(end of tr, F),
+// d exp(lambda l) with d = rho where F lies within d_max (a target just behind an obstacle),
+// and beyond it length weighed as at d_max: the product would make every metre cost lambda
+// times the whole remaining way, and beyond 1 / lambda (20 m) of it no trajectory heading for F
+// could beat the shortest one that ends any closer. The vehicle would creep toward a far target
+// cycle after cycle at whatever it was doing (a car at full lock loops).
 //
 // The bounded approximation, and why:
 //  - c ranges over at most TargetSight::kMaxTargetCells cells of the group, and "q sees c" is
