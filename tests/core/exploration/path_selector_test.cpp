@@ -308,77 +308,75 @@ TEST_F(PathSelectorTest, LeavingTheLastCourseCostsItsLengthInTheWeight) {
   }
 }
 
-// A corridor 16 m long whose far end is unknown: a tree that has just come within sensing range
-// of the frontier sees only the few cells straight ahead, at the edge of the range. Standing
-// still must not be the best choice then (with d_max alone for an unseen cell it was: the
-// trajectory's length cost more than the few cells gained, and the robot stalled).
-TEST(PathSelectorFromAfar, SeeingAFewFrontierCellsStillMovesTowardThem) {
-  OccupancyGrid grid = OccupancyGrid::create(160, 30, 0.1, 0.0, 0.0, Cell::kObstacle).value();
-  grid.fill_rect(0.3, 0.3, 15.7, 2.7, Cell::kFree);
-  grid.fill_rect(14.0, 0.3, 15.7, 2.7, Cell::kUnknown);
+// A corridor length_m long and 3 m wide whose last 1.7 m are unknown, the robot at rest at
+// (1, 1.5) facing along it, the target chosen and the planner's problem set.
+class PathSelectorFromAfar : public ::testing::Test {
+ protected:
   const DdVelocity robot = DdVelocity::create({}).value();
-  PlannerConfig pc;
-  pc.max_edges = 4000;
-  pc.max_trajectories = 2000;
-  pc.stop_at_goal = false;
-  auto planner = DdVelocityPlanner::create(robot, grid, pc).value();
-  auto frontiers = FrontierMap::create(160, 30, 0.1, FrontierConfig{}).value();
-  PathSelectionConfig config;
-  auto selector = PathSelector::create(160, 30, 0.1, pc.max_edges, config).value();
-  auto sight = selector.create_sight().value();
-  ASSERT_EQ(frontiers.update(grid, planner.checker().clearance(), 1.0, 1.5),
-            ExplorationStatus::kTarget);
-  ASSERT_TRUE(planner.set_problem(robot.rest_state(1.0, 1.5, 0.0),
-                                  Goal::cells(frontiers.approach_cells())));
-  sight.set_target(grid, frontiers.target_cells());
+  std::optional<OccupancyGrid> grid;
+  std::optional<DdVelocityPlanner> planner;
+  std::optional<FrontierMap> frontiers;
+  std::optional<PathSelector> selector;
+  std::optional<TargetSight> sight;
+
+  void build(double length_m) {
+    const int width = static_cast<int>(std::lround(length_m / 0.1));
+    grid.emplace(OccupancyGrid::create(width, 30, 0.1, 0.0, 0.0, Cell::kObstacle).value());
+    grid->fill_rect(0.3, 0.3, length_m - 0.3, 2.7, Cell::kFree);
+    grid->fill_rect(length_m - 2.0, 0.3, length_m - 0.3, 2.7, Cell::kUnknown);
+    PlannerConfig pc;
+    pc.max_edges = 4000;
+    pc.max_trajectories = 2000;
+    pc.stop_at_goal = false;
+    planner.emplace(DdVelocityPlanner::create(robot, *grid, pc).value());
+    frontiers.emplace(FrontierMap::create(width, 30, 0.1, FrontierConfig{}).value());
+    selector.emplace(
+        PathSelector::create(width, 30, 0.1, pc.max_edges, PathSelectionConfig{}).value());
+    sight.emplace(selector->create_sight().value());
+    ASSERT_EQ(frontiers->update(*grid, planner->checker().clearance(), 1.0, 1.5),
+              ExplorationStatus::kTarget);
+    ASSERT_TRUE(planner->set_problem(robot.rest_state(1.0, 1.5, 0.0),
+                                     Goal::cells(frontiers->approach_cells())));
+    sight->set_target(*grid, frontiers->target_cells());
+  }
+};
+
+// A corridor 16 m long: a tree that has just come within sensing range of the frontier sees
+// only the few cells straight ahead, at the edge of the range. Standing still must not be the
+// best choice then (with d_max alone for an unseen cell it was: the trajectory's length cost
+// more than the few cells gained, and the robot stalled).
+TEST_F(PathSelectorFromAfar, SeeingAFewFrontierCellsStillMovesTowardThem) {
+  ASSERT_NO_FATAL_FAILURE(build(16.0));
   // Grow until the first tree state sees a target cell.
   PathChoice choice;
   for (std::uint64_t edges = 20; edges <= 4000 && !choice.sees_target; edges += 20) {
-    (void)planner.solve([&] { return planner.stats().edges_added >= edges; });
-    choice = selector.select(planner, sight, 20);
+    (void)planner->solve([&] { return planner->stats().edges_added >= edges; });
+    choice = selector->select(*planner, *sight, 20);
   }
   ASSERT_TRUE(choice.sees_target) << "the tree never came within sight of the frontier";
-  const auto& end = planner.tree().edge_state(choice.state.edge, choice.state.index);
+  const auto& end = planner->tree().edge_state(choice.state.edge, choice.state.index);
   EXPECT_GT(end[0], 8.0) << "chose a trajectory of " << choice.length_m << " m ending at ("
                          << end[0] << ", " << end[1] << ")";
 }
 
-// A corridor 60 m long whose far end is unknown, the robot at the other end: no tree state sees
-// the frontier, rho is about 55 m. The choice must head for it, not take the shortest step that
-// ends any closer (with rho * exp(lambda l), beyond 20 m of rho every metre driven toward F
-// weighs more than it gains).
-TEST(PathSelectorFromAfar, FarFromTheFrontierTheChoiceHeadsForIt) {
-  OccupancyGrid grid = OccupancyGrid::create(600, 30, 0.1, 0.0, 0.0, Cell::kObstacle).value();
-  grid.fill_rect(0.3, 0.3, 59.7, 2.7, Cell::kFree);
-  grid.fill_rect(58.0, 0.3, 59.7, 2.7, Cell::kUnknown);
-  const DdVelocity robot = DdVelocity::create({}).value();
-  PlannerConfig pc;
-  pc.max_edges = 4000;
-  pc.max_trajectories = 2000;
-  pc.stop_at_goal = false;
-  auto planner = DdVelocityPlanner::create(robot, grid, pc).value();
-  auto frontiers = FrontierMap::create(600, 30, 0.1, FrontierConfig{}).value();
-  PathSelectionConfig config;
-  auto selector = PathSelector::create(600, 30, 0.1, pc.max_edges, config).value();
-  auto sight = selector.create_sight().value();
-  ASSERT_EQ(frontiers.update(grid, planner.checker().clearance(), 1.0, 1.5),
-            ExplorationStatus::kTarget);
-  ASSERT_TRUE(planner.set_problem(robot.rest_state(1.0, 1.5, 0.0),
-                                  Goal::cells(frontiers.approach_cells())));
-  sight.set_target(grid, frontiers.target_cells());
-  (void)planner.solve([&] { return planner.stats().edges_added >= 60; });
-  const PathChoice choice = selector.select(planner, sight, 20);
+// A corridor 60 m long: no tree state sees the frontier, rho is about 56 m. The choice must
+// head for it, not take the shortest step that ends any closer (with rho * exp(lambda l),
+// beyond 20 m of rho every metre driven toward F weighs more than it gains).
+TEST_F(PathSelectorFromAfar, FarFromTheFrontierTheChoiceHeadsForIt) {
+  ASSERT_NO_FATAL_FAILURE(build(60.0));
+  (void)planner->solve([&] { return planner->stats().edges_added >= 60; });
+  const PathChoice choice = selector->select(*planner, *sight, 20);
   ASSERT_NE(choice.state.edge, kNoHandle);
   ASSERT_FALSE(choice.sees_target);
-  const double root_rho = planner.rho_m(robot.rest_state(1.0, 1.5, 0.0));
+  const double root_rho = planner->rho_m(robot.rest_state(1.0, 1.5, 0.0));
   ASSERT_GT(root_rho, 50.0);
   // The most any trajectory of at least T gets closer.
   double least_rho = root_rho;
-  planner.visit_edges([&](EdgeHandle e, const Edge& edge) {
+  planner->visit_edges([&](EdgeHandle e, const Edge& edge) {
     for (int k = edge.first; k <= edge.last; ++k) {
       const auto index = static_cast<std::uint16_t>(k);
-      if (planner.tree().step_of(e, index) < 20) continue;
-      least_rho = std::min(least_rho, planner.rho_m(planner.tree().edge_state(e, index)));
+      if (planner->tree().step_of(e, index) < 20) continue;
+      least_rho = std::min(least_rho, planner->rho_m(planner->tree().edge_state(e, index)));
     }
   });
   ASSERT_LT(least_rho, root_rho - 4.0) << "the tree hardly left the start";
