@@ -81,13 +81,15 @@ ExplorationDriver<V>::ExplorationDriver(ExplorationDriver&& other) noexcept
       groups_unreachable_(other.groups_unreachable_),
       has_target_(other.has_target_),
       target_x_m_(other.target_x_m_),
-      target_y_m_(other.target_y_m_) {}
+      target_y_m_(other.target_y_m_),
+      choice_(other.choice_) {}
 
 template <VehicleModel V>
 bool ExplorationDriver<V>::update(ReplanningCycle<V>& cycle, const OccupancyGrid& grid,
                                   std::uint64_t plan_start_ns, const MapChanges& changes,
                                   bool lockstep) noexcept {
   written_since_request_.add(changes.written);
+  choice_ = PathChoice{};
   std::uint8_t stage = stage_.load(std::memory_order_acquire);
   if (lockstep && stage != kIdle) {
     static_cast<void>(serve_request());  // not begun by the target thread: chosen here
@@ -143,8 +145,24 @@ template <VehicleModel V>
 TreeState ExplorationDriver<V>::choose_plan_end(const Planner<V>& planner,
                                                 std::uint32_t cycle_steps,
                                                 TreeState course) noexcept {
-  return explored_ ? planner.root_state()
-                   : selector_.select(planner, sight_, cycle_steps, course).state;
+  if (explored_) return planner.root_state();
+  choice_ = selector_.select(planner, sight_, cycle_steps, course);
+  return choice_.state;
+}
+
+template <VehicleModel V>
+ExplorationRecord ExplorationDriver<V>::record() const noexcept {
+  ExplorationRecord r;
+  r.exploring = true;
+  r.has_target = has_target_;
+  r.target_x_m = target_x_m_;
+  r.target_y_m = target_y_m_;
+  r.root_rho_m = choice_.root_rho_m;
+  r.chosen = choice_.state.edge != kNoHandle;
+  r.sees_target = choice_.sees_target;
+  r.d_m = choice_.d_m;
+  r.length_m = choice_.length_m;
+  return r;
 }
 
 // The planning thread, with target_ its own (kIdle).

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -106,17 +107,29 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
   }
 }
 
+// A CSV line's fields, empty ones included.
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> fields(1);
+  for (const char c : line) {
+    if (c == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
 // The cycle trace: a header and one row per planning cycle, numbered from 0, each row's phases
 // within its compute time, its miss consistent with its lateness and a restart with its cause.
-void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles) {
+// Exploring within a map of map_side_m: the target inside it once there is one, and a choice
+// without sight of it only of an end closer to it than the root (the path selector's rule).
+void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles,
+                          double map_side_m) {
   std::ifstream in(path);
   std::string line;
   ASSERT_TRUE(std::getline(in, line)) << path << " is empty";
-  std::vector<std::string> header;
-  {
-    std::stringstream fields(line);
-    for (std::string f; std::getline(fields, f, ',');) header.push_back(f);
-  }
+  const std::vector<std::string> header = fields_of(line);
   const auto column = [&](const char* name) {
     const auto it = std::find(header.begin(), header.end(), name);
     EXPECT_NE(it, header.end()) << name << " missing from " << line;
@@ -128,18 +141,23 @@ void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles)
                     commit_reserve = column("commit_reserve_us"), compute = column("compute_us"),
                     lateness = column("lateness_us"), missed = column("missed"),
                     restarted = column("restarted"), committed = column("committed"),
-                    status = column("retain_status"), cause = column("restart_cause");
+                    status = column("retain_status"), cause = column("restart_cause"),
+                    target_x = column("target_x_m"), target_y = column("target_y_m"),
+                    root_rho = column("root_rho_m"), choice = column("choice"),
+                    choice_d = column("choice_d_m"), choice_length = column("choice_length_m");
   std::uint64_t rows = 0;
+  std::uint64_t chosen_by_sight = 0;
   while (std::getline(in, line)) {
+    const std::vector<std::string> f = fields_of(line);
+    ASSERT_EQ(f.size(), header.size()) << line;
+    // Every field a number but the names; an empty one (no figure) reads as NaN.
     std::vector<double> v;
-    std::string status_name, cause_name;
-    std::stringstream fields(line);
-    for (std::string f; std::getline(fields, f, ',');) {
-      if (v.size() == status) status_name = f;
-      if (v.size() == cause) cause_name = f;
-      v.push_back(v.size() == status || v.size() == cause ? 0.0 : std::stod(f));
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const bool name = i == status || i == cause || i == choice;
+      v.push_back(name ? 0.0 : f[i].empty() ? std::nan("") : std::stod(f[i]));
     }
-    ASSERT_EQ(v.size(), header.size()) << line;
+    const std::string& status_name = f[status];
+    const std::string& cause_name = f[cause];
     // Why the tree could not be kept or started; a committed plan comes from a tree that was.
     EXPECT_TRUE(status_name == "ok" || status_name == "root-not-in-tree" ||
                 status_name == "root-in-collision" || status_name == "invalid-state" ||
@@ -162,10 +180,31 @@ void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles)
     EXPECT_GE(v[commit_reserve], 0.0) << line;
     EXPECT_LE(v[prepare] + v[retain] + v[grow] + v[commit], v[compute] + 1.0) << line;
     EXPECT_EQ(v[missed] == 1.0, v[lateness] > 0.0) << line;
+    // Exploring: the target's centre lies in the map, and an end was chosen by sight of the
+    // target or by rho, or none was (its figures then empty).
+    EXPECT_EQ(std::isnan(v[target_x]), std::isnan(v[target_y])) << line;
+    if (!std::isnan(v[target_x])) {
+      EXPECT_TRUE(v[target_x] >= 0.0 && v[target_x] <= map_side_m) << line;
+      EXPECT_TRUE(v[target_y] >= 0.0 && v[target_y] <= map_side_m) << line;
+    }
+    const std::string& chose = f[choice];
+    EXPECT_TRUE(chose == "sight" || chose == "rho" || chose == "none") << line;
+    if (chose == "none") {
+      EXPECT_TRUE(std::isnan(v[root_rho]) && std::isnan(v[choice_d])) << line;
+    } else {
+      EXPECT_GE(v[choice_d], 0.0) << line;
+      EXPECT_GE(v[choice_length], 0.0) << line;
+      EXPECT_GE(v[root_rho], 0.0) << line;
+    }
+    if (chose == "rho") {
+      EXPECT_LT(v[choice_d], v[root_rho]) << line;
+    }
+    if (chose == "sight") ++chosen_by_sight;
     ++rows;
   }
   // The planner runs on for a moment after the simulator has ended the run.
   EXPECT_GE(rows, planner_cycles);
+  EXPECT_GT(chosen_by_sight, 0U) << "no plan ever headed for a target in sight";
 }
 
 TEST(ExploreCommand, ExploresASmallMapWithoutCollisionAndWritesReportAndPicture) {
@@ -184,7 +223,7 @@ TEST(ExploreCommand, ExploresASmallMapWithoutCollisionAndWritesReportAndPicture)
   char signature[8] = {};
   png.read(signature, 8);
   EXPECT_EQ(std::string(signature + 1, 3), "PNG");
-  expect_a_cycle_trace(trace, j.at("cycles").get<std::uint64_t>());
+  expect_a_cycle_trace(trace, j.at("cycles").get<std::uint64_t>(), 10.0);
   // What produced it: the parameters in force and what the machine granted the planning thread.
   EXPECT_NE(j.at("parameters").get<std::string>().find("model: dd-vel"), std::string::npos);
   const std::string policy = j.at("scheduling").at("policy");

@@ -12,6 +12,30 @@ namespace {
 
 double us(std::int64_t ns) { return static_cast<double>(ns) * 1e-3; }
 
+// A metre figure ("inf": rho's wavefront does not reach), or an empty field where there is
+// none (not exploring, no target yet, no end chosen).
+void put_m(std::FILE* out, bool known, double m) {
+  if (known) {
+    std::fprintf(out, ",%.2f", m);
+  } else {
+    std::fputs(",", out);
+  }
+}
+
+// The exploration columns (rt::ExplorationRecord): the target's centre, rho from the root to
+// it, and how the plan's end was chosen: "sight" (some tree state sees the target: d is the
+// visibility sum), "rho" (none does: d is rho at the end), "none" (no end: the plan leads to
+// the root), empty when the cycle did not explore.
+void put_exploration(std::FILE* out, const rt::ExplorationRecord& e) {
+  put_m(out, e.exploring && e.has_target, e.target_x_m);
+  put_m(out, e.exploring && e.has_target, e.target_y_m);
+  put_m(out, e.exploring && e.chosen, e.root_rho_m);
+  const char* choice = !e.exploring ? "" : !e.chosen ? "none" : e.sees_target ? "sight" : "rho";
+  std::fprintf(out, ",%s", choice);
+  put_m(out, e.exploring && e.chosen, e.d_m);
+  put_m(out, e.exploring && e.chosen, e.length_m);
+}
+
 }  // namespace
 
 Result<CycleTrace> CycleTrace::open(const std::string& path) {
@@ -24,7 +48,8 @@ Result<CycleTrace> CycleTrace::open(const std::string& path) {
       "cycle,release_ms,wake_us,prepare_us,retain_us,grow_us,commit_us,commit_reserve_us,"
       "compute_us,lateness_us,missed,skipped,restarted,committed,kept_previous,"
       "plan_available,pool_exhausted,edges_added,edges_retained,tree_edges,plan_duration_s,"
-      "retain_status,restart_cause\n",
+      "retain_status,restart_cause,target_x_m,target_y_m,root_rho_m,choice,choice_d_m,"
+      "choice_length_m\n",
       file->stream());
   return CycleTrace(std::move(file));
 }
@@ -38,7 +63,7 @@ void CycleTrace::write(const rt::CycleRecord& r) {
   std::fprintf(
       file_->stream(),
       "%llu,%.3f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%d,%d,%d,%d,%d,%d,%d,%llu,%u,%u,%.3f,%"
-      ".*s,%.*s\n",
+      ".*s,%.*s",
       static_cast<unsigned long long>(r.cycle),
       static_cast<double>(r.release_ns - first_release_ns_) * 1e-6, us(r.wake_latency_ns),
       us(o.prepare_ns), us(o.retain_ns), us(o.grow_ns), us(o.commit_ns), us(o.commit_reserve_ns),
@@ -47,6 +72,8 @@ void CycleTrace::write(const rt::CycleRecord& r) {
       o.pool_exhausted ? 1 : 0, static_cast<unsigned long long>(o.edges_added), o.edges_retained,
       o.tree_edges, o.plan_duration_s, static_cast<int>(retain_status.size()), retain_status.data(),
       static_cast<int>(restart_cause.size()), restart_cause.data());
+  put_exploration(file_->stream(), o.exploration);
+  std::fputc('\n', file_->stream());
 }
 
 Status CycleTrace::close() {

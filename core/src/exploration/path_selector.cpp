@@ -208,7 +208,9 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
     length_[e] = length;
   }
   mark_course(kOffCourse);
-  return seen_any ? by_sight : by_rho;
+  PathChoice chosen = seen_any ? by_sight : by_rho;
+  chosen.root_rho_m = root_rho;
+  return chosen;
 }
 
 template PathChoice PathSelector::select(const Planner<DdVelocity>&, const TargetSight&,

@@ -161,6 +161,7 @@ CycleOutcome PlanningSide<V>::plan_cycle(std::int64_t start_ns, const MapChanges
   const std::int64_t prepared = platform::now_ns();
   CycleOutcome out = session.run(now, deadline_ns, choose, announce_plan);
   out.prepare_ns = prepared - start_ns;
+  if (exploring_) out.exploration = driver_->record();
   hand_over_plan(out);
   hand_over_status(out, start_ns);
   publish_wakeup_.signal();

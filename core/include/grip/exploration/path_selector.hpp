@@ -66,6 +66,7 @@ struct PathChoice {
   double length_m = 0.0;  // l(tr) over the sampled states (or reference speed x duration)
   double weight = std::numeric_limits<double>::infinity();
   bool sees_target = false;  // some tree state sees a target cell: d is the visibility sum
+  double root_rho_m = std::numeric_limits<double>::infinity();  // rho at the root, to F
 };
 
 class PathSelector {

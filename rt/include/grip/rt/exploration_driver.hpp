@@ -69,6 +69,9 @@ class ExplorationDriver {
   // `course`: the end of the plan committed last (ReplanningCycle::committed).
   TreeState choose_plan_end(const Planner<V>& planner, std::uint32_t cycle_steps,
                             TreeState course) noexcept;
+  // This cycle's target and choice of the plan's end (none before choose_plan_end, which a
+  // cycle that could not keep its tree does not call).
+  ExplorationRecord record() const noexcept;
 
   ExplorationDriver(ExplorationDriver&& other) noexcept;  // start-up only: not while in use
   ExplorationDriver& operator=(ExplorationDriver&&) = delete;
@@ -124,6 +127,7 @@ class ExplorationDriver {
   bool has_target_ = false;
   double target_x_m_ = 0.0;
   double target_y_m_ = 0.0;
+  PathChoice choice_;  // this cycle's, once chosen
 };
 
 extern template class ExplorationDriver<DdVelocity>;

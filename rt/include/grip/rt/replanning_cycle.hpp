@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -75,6 +76,21 @@ enum class RestartCause : std::uint8_t {
 };
 std::string_view restart_cause_name(RestartCause cause) noexcept;
 
+// Where an exploring cycle headed and how the path selector chose its plan's end
+// (ExplorationDriver, PathSelector), for a cycle trace: a target that flips between groups, or
+// plans that creep toward it, show here.
+struct ExplorationRecord {
+  bool exploring = false;   // the rest holds only when the cycle explored
+  bool has_target = false;  // a frontier target had been taken over
+  double target_x_m = 0.0;  // its centre: the group's cell nearest the robot by rho_A*
+  double target_y_m = 0.0;
+  double root_rho_m = std::numeric_limits<double>::infinity();  // from the root to the target
+  bool chosen = false;       // the selector found an end (else the plan leads to the root)
+  bool sees_target = false;  // by the visibility sum d (else by rho at the end)
+  double d_m = std::numeric_limits<double>::infinity();  // d(tr), or rho at its end
+  double length_m = 0.0;                                 // l(tr)
+};
+
 // What a cycle did.
 struct CycleOutcome {
   RetainStatus retain_status = RetainStatus::kOk;  // of the retainment, or of the restart
@@ -97,6 +113,7 @@ struct CycleOutcome {
   // The caller's work before the cycle (map updates, the vehicle's state, the choice of a
   // target), set by the caller: a cycle trace then accounts for the whole cycle.
   std::int64_t prepare_ns = 0;
+  ExplorationRecord exploration;  // set by the caller
 
   // The tree was rebuilt from the predicted state.
   bool restarted() const noexcept { return restart_cause != RestartCause::kNone; }
