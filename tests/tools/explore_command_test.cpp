@@ -142,6 +142,7 @@ void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles,
                     lateness = column("lateness_us"), missed = column("missed"),
                     restarted = column("restarted"), committed = column("committed"),
                     status = column("retain_status"), cause = column("restart_cause"),
+                    start_x = column("start_x_m"), start_y = column("start_y_m"),
                     target_x = column("target_x_m"), target_y = column("target_y_m"),
                     root_rho = column("root_rho_m"), choice = column("choice"),
                     choice_d = column("choice_d_m"), choice_length = column("choice_length_m");
@@ -180,6 +181,9 @@ void expect_a_cycle_trace(const std::string& path, std::uint64_t planner_cycles,
     EXPECT_GE(v[commit_reserve], 0.0) << line;
     EXPECT_LE(v[prepare] + v[retain] + v[grow] + v[commit], v[compute] + 1.0) << line;
     EXPECT_EQ(v[missed] == 1.0, v[lateness] > 0.0) << line;
+    // The plan starts in the map.
+    EXPECT_TRUE(v[start_x] >= 0.0 && v[start_x] <= map_side_m) << line;
+    EXPECT_TRUE(v[start_y] >= 0.0 && v[start_y] <= map_side_m) << line;
     // Exploring: the target's centre lies in the map, and an end was chosen by sight of the
     // target or by rho, or none was (its figures then empty).
     EXPECT_EQ(std::isnan(v[target_x]), std::isnan(v[target_y])) << line;

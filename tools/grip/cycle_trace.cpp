@@ -48,7 +48,8 @@ Result<CycleTrace> CycleTrace::open(const std::string& path) {
       "cycle,release_ms,wake_us,prepare_us,retain_us,grow_us,commit_us,commit_reserve_us,"
       "compute_us,lateness_us,missed,skipped,restarted,committed,kept_previous,"
       "plan_available,pool_exhausted,edges_added,edges_retained,tree_edges,plan_duration_s,"
-      "retain_status,restart_cause,target_x_m,target_y_m,root_rho_m,choice,choice_d_m,"
+      "retain_status,restart_cause,start_x_m,start_y_m,start_theta,target_x_m,target_y_m,root_rho_"
+      "m,choice,choice_d_m,"
       "choice_length_m\n",
       file->stream());
   return CycleTrace(std::move(file));
@@ -72,6 +73,7 @@ void CycleTrace::write(const rt::CycleRecord& r) {
       o.pool_exhausted ? 1 : 0, static_cast<unsigned long long>(o.edges_added), o.edges_retained,
       o.tree_edges, o.plan_duration_s, static_cast<int>(retain_status.size()), retain_status.data(),
       static_cast<int>(restart_cause.size()), restart_cause.data());
+  std::fprintf(file_->stream(), ",%.2f,%.2f,%.3f", o.start_x_m, o.start_y_m, o.start_theta);
   put_exploration(file_->stream(), o.exploration);
   std::fputc('\n', file_->stream());
 }

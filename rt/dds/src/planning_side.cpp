@@ -161,6 +161,10 @@ CycleOutcome PlanningSide<V>::plan_cycle(std::int64_t start_ns, const MapChanges
   const std::int64_t prepared = platform::now_ns();
   CycleOutcome out = session.run(now, deadline_ns, choose, announce_plan);
   out.prepare_ns = prepared - start_ns;
+  const auto& start = session.cycle().plan_start();
+  out.start_x_m = state_x(start);
+  out.start_y_m = state_y(start);
+  out.start_theta = state_theta(start);
   if (exploring_) out.exploration = driver_->record();
   hand_over_plan(out);
   hand_over_status(out, start_ns);

@@ -113,6 +113,10 @@ struct CycleOutcome {
   // The caller's work before the cycle (map updates, the vehicle's state, the choice of a
   // target), set by the caller: a cycle trace then accounts for the whole cycle.
   std::int64_t prepare_ns = 0;
+  // Where the cycle planned from (q[i]: the root, where its plan starts), set by the caller.
+  double start_x_m = 0.0;
+  double start_y_m = 0.0;
+  double start_theta = 0.0;
   ExplorationRecord exploration;  // set by the caller
 
   // The tree was rebuilt from the predicted state.
