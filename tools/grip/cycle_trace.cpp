@@ -25,7 +25,7 @@ void put_m(std::FILE* out, bool known, double m) {
 // The exploration columns (rt::ExplorationRecord): the target's centre, rho from the root to
 // it, and how the plan's end was chosen: "sight" (some tree state sees the target: d is the
 // visibility sum), "rho" (none does: d is rho at the end), "none" (no end: the plan leads to
-// the root), empty when the cycle did not explore.
+// the root), empty when the cycle did not explore (or was skipped).
 void put_exploration(std::FILE* out, const rt::ExplorationRecord& e) {
   put_m(out, e.exploring && e.has_target, e.target_x_m);
   put_m(out, e.exploring && e.has_target, e.target_y_m);
@@ -73,7 +73,11 @@ void CycleTrace::write(const rt::CycleRecord& r) {
       o.pool_exhausted ? 1 : 0, static_cast<unsigned long long>(o.edges_added), o.edges_retained,
       o.tree_edges, o.plan_duration_s, static_cast<int>(retain_status.size()), retain_status.data(),
       static_cast<int>(restart_cause.size()), restart_cause.data());
-  std::fprintf(file_->stream(), ",%.2f,%.2f,%.3f", o.start_x_m, o.start_y_m, o.start_theta);
+  if (r.skipped) {  // no body ran: no start, and no exploration either
+    std::fputs(",,,", file_->stream());
+  } else {
+    std::fprintf(file_->stream(), ",%.2f,%.2f,%.3f", o.start_x_m, o.start_y_m, o.start_theta);
+  }
   put_exploration(file_->stream(), o.exploration);
   std::fputc('\n', file_->stream());
 }
