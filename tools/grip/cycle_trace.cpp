@@ -48,9 +48,9 @@ Result<CycleTrace> CycleTrace::open(const std::string& path) {
       "cycle,release_ms,wake_us,prepare_us,retain_us,grow_us,commit_us,commit_reserve_us,"
       "compute_us,lateness_us,missed,skipped,restarted,committed,kept_previous,"
       "plan_available,pool_exhausted,edges_added,edges_retained,tree_edges,plan_duration_s,"
-      "retain_status,restart_cause,start_x_m,start_y_m,start_theta,target_x_m,target_y_m,root_rho_"
-      "m,choice,choice_d_m,"
-      "choice_length_m\n",
+      "retain_status,restart_cause,"
+      "start_x_m,start_y_m,start_theta,"
+      "target_x_m,target_y_m,root_rho_m,choice,choice_d_m,choice_length_m\n",
       file->stream());
   return CycleTrace(std::move(file));
 }
