@@ -2,8 +2,8 @@
 // `--cycle-trace FILE`: one CSV row per planning cycle, for finding out why a deadline was
 // missed (a late wake-up, a long target choice, growth that overran, a slow commit), what the
 // cycle achieved, and, exploring, where it headed and why (a target that flips between groups,
-// plans that creep or loop). Written from an ordinary thread as records arrive; the planning thread only
-// fills the record (rt::CycleRecord).
+// plans that creep or loop). Written from an ordinary thread as records arrive; the planning thread
+// only fills the record (rt::CycleRecord).
 
 #include <cstdio>
 #include <memory>
