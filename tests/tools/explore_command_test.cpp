@@ -482,6 +482,23 @@ TEST(ExploreCommand, BadMapsAndOptionsAreRefusedNamingWhatIsWrong) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("sensor.range_m must be finite and >= 0"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(set by --sensor-range)"), std::string::npos) << r.output;
+
+  for (const char* timeout : {"-1", "inf", "nan"}) {
+    r = run(std::string("explore --startup-timeout ") + timeout);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("--startup-timeout must be in [0, 86400] s"), std::string::npos)
+        << r.output;
+  }
+}
+
+TEST(ExploreCommand, APlannerThatCannotStartInItsTimeoutEndsTheRunSayingWhatItWaitedFor) {
+  // A planner cannot start within a millisecond: at the least, it waits for a goal for a while
+  // before it explores. What it still waited for is named, whatever that was at the time.
+  const CommandRun r =
+      run("explore --map " + write_small_map() + " --lockstep --startup-timeout 0.001");
+  EXPECT_EQ(r.status, 3) << r.output;  // the run ended, as an error
+  EXPECT_NE(r.output.find("start-up timed out waiting for a"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("()"), std::string::npos) << r.output;
 }
 
 }  // namespace

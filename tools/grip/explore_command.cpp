@@ -57,7 +57,10 @@ struct ExploreOptions {
   double drop_plans = 0.0;
   std::string report;
   std::string image;
-  std::string cycle_trace;    // grip explore: the planner's cycles, as CSV
+  std::string cycle_trace;  // grip explore: the planner's cycles, as CSV
+  // grip explore: how long its planner waits for the map, the state and the vehicle's
+  // description before the run ends as an error [s]; 0: for ever.
+  double startup_timeout_s = 30.0;
   bool private_link = false;  // grip explore --private
   std::string dds_config;     // grip sim: a Cyclone configuration of its own (else loopback)
 };
@@ -389,7 +392,12 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     pc.dds_config = link.dds_config;
     if (trace) pc.on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
     pc.seed = o.seed;
-    pc.startup_timeout = std::chrono::seconds(30);
+    auto timeout = startup_timeout(o.startup_timeout_s);
+    if (!timeout) {
+      std::cerr << command << ": " << timeout.error().message << "\n";
+      return 2;
+    }
+    pc.startup_timeout = *timeout;
     pc.security = *security;
     auto created = rt::dds::PlannerParticipant::create(pc);
     if (!created) {
@@ -517,6 +525,7 @@ void register_explore_commands(CLI::App& app) {
   add_lockstep_options(*e, explore->params);
   e->add_option("--cycle-trace", explore->cycle_trace,
                 "Write every planning cycle's timing and outcome here (CSV)");
+  add_startup_timeout_option(*e, explore->startup_timeout_s);
   e->add_flag("--private", explore->private_link,
               "Keep the run's DDS traffic to itself even with --domain, --topic-prefix or a "
               "parameter file's link section (the default without them: a discovery tag of "

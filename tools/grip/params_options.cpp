@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include "dds_config.hpp"
 
@@ -42,6 +43,24 @@ void add_sensor_option(CLI::App& command, ParamsOptions& o) {
   command.add_option("--sensor-range", o.sensor_range_m,
                      "The range sensor's reach [m] (sensor.range_m; default: the parameters', "
                      "whose auto is a tenth of the map's larger side)");
+}
+
+void add_startup_timeout_option(CLI::App& command, double& seconds) {
+  command
+      .add_option("--startup-timeout", seconds,
+                  "Give up if the map, the vehicle's state and description (and a goal, where "
+                  "one is needed) are not there after this many seconds (0: wait); a map of "
+                  "millions of cells takes seconds to sync")
+      ->capture_default_str();
+}
+
+Result<std::chrono::nanoseconds> startup_timeout(double seconds) {
+  constexpr double kDay = 86'400.0;
+  if (!(seconds >= 0.0 && seconds <= kDay)) {  // NaN too
+    return invalid_argument("--startup-timeout must be in [0, 86400] s (got " +
+                            std::to_string(seconds) + ")");
+  }
+  return std::chrono::nanoseconds(static_cast<std::int64_t>(seconds * 1e9));
 }
 
 void add_cycle_options(CLI::App& command, ParamsOptions& o) {

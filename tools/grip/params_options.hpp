@@ -4,6 +4,7 @@
 // value of it. The effective set is what runs, and what the command's report records.
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -50,6 +51,12 @@ void add_lockstep_options(CLI::App& command, ParamsOptions& o);
 void add_sensor_option(CLI::App& command, ParamsOptions& o);
 // --period-ms, --budget-ms, --margin-ms, --max-edges, --policy and --lease-ms.
 void add_cycle_options(CLI::App& command, ParamsOptions& o);
+// --startup-timeout [s]: how long a planner waits for the map in sync, the vehicle's state and
+// description (and a goal, where it needs one) before it gives up; 0: for ever. The option's
+// value as the planner's configuration takes it, or an error naming the option (not in
+// [0, 1 day]).
+void add_startup_timeout_option(CLI::App& command, double& seconds);
+Result<std::chrono::nanoseconds> startup_timeout(double seconds);
 
 // The file's parameters (or the built-in vehicle's) with the overrides applied, checked. Every
 // error is the user's (exit 2): a bad file names file:line:column, a bad override its option.

@@ -54,9 +54,7 @@ extern "C" void stop_on_signal(int) {
 
 Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o,
                                                     const params::GripParams& p) {
-  if (!(o.duration_s >= 0.0) || !(o.startup_timeout_s >= 0.0)) {
-    return invalid_argument("--duration and --startup-timeout must be >= 0");
-  }
+  if (!(o.duration_s >= 0.0)) return invalid_argument("--duration must be >= 0");
   rt::dds::PlannerParticipantConfig config = planner_participant_config(p);
   Result<std::string> dds_config =
       choose_dds_config(o.dds_config.empty() ? p.link.dds_config : o.dds_config);
@@ -67,8 +65,9 @@ Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o,
   config.security = *security;
   config.seed = o.seed;
   config.duration_s = o.duration_s;
-  config.startup_timeout =
-      std::chrono::nanoseconds(static_cast<std::int64_t>(o.startup_timeout_s * 1e9));
+  auto timeout = startup_timeout(o.startup_timeout_s);
+  if (!timeout) return timeout.error();
+  config.startup_timeout = *timeout;
   return config;
 }
 
@@ -260,9 +259,7 @@ void register_planner_command(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "Planner seed")->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "Seconds of planning, 0: until Ctrl-C")
       ->capture_default_str();
-  cmd->add_option("--startup-timeout", o->startup_timeout_s,
-                  "Give up if map, state and goal are not there after this many seconds (0: wait)")
-      ->capture_default_str();
+  add_startup_timeout_option(*cmd, o->startup_timeout_s);
   cmd->add_option("--report", o->report, "Write a JSON report here");
   cmd->add_option("--cycle-trace", o->cycle_trace,
                   "Write every planning cycle's timing and outcome here (CSV)");

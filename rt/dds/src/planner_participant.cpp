@@ -352,7 +352,13 @@ Status PlannerParticipantFor<V>::start_up() {
       }
       if (!state) what += " a vehicle state,";
       if (!goal && !config_.explore_without_goal) what += " a goal,";
-      if (what.empty()) what = " a start the planner accepts (" + refusal + "),";
+      if (!goal && config_.explore_without_goal && !explore) {
+        what += " a goal or the end of the goal's grace period (then it explores),";
+      }
+      if (what.empty()) {
+        what = refusal.empty() ? " the planner to start,"
+                               : " a start the planner accepts (" + refusal + "),";
+      }
       what.pop_back();
       return what;
     };
