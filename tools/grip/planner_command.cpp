@@ -54,7 +54,12 @@ extern "C" void stop_on_signal(int) {
 
 Result<rt::dds::PlannerParticipantConfig> to_config(const PlannerOptions& o,
                                                     const params::GripParams& p) {
-  if (!(o.duration_s >= 0.0)) return invalid_argument("--duration must be >= 0");
+  // At most a century: the cycle count it becomes must fit in 64 bits (0: until stopped).
+  constexpr double kMaxDurationS = 100.0 * 365.25 * 86'400.0;
+  if (!(o.duration_s >= 0.0 && o.duration_s <= kMaxDurationS)) {
+    return invalid_argument("--duration must be in [0, 100 years] s, 0: until stopped (got " +
+                            std::to_string(o.duration_s) + ")");
+  }
   rt::dds::PlannerParticipantConfig config = planner_participant_config(p);
   Result<std::string> dds_config =
       choose_dds_config(o.dds_config.empty() ? p.link.dds_config : o.dds_config);
