@@ -57,12 +57,10 @@ struct ExploreOptions {
   double drop_plans = 0.0;
   std::string report;
   std::string image;
-  std::string cycle_trace;  // grip explore: the planner's cycles, as CSV
-  // grip explore: how long its planner waits for the map, the state and the vehicle's
-  // description before the run ends as an error [s]; 0: for ever.
-  double startup_timeout_s = 30.0;
-  bool private_link = false;  // grip explore --private
-  std::string dds_config;     // grip sim: a Cyclone configuration of its own (else loopback)
+  std::string cycle_trace;          // grip explore: the planner's cycles, as CSV
+  double startup_timeout_s = 30.0;  // grip explore --startup-timeout (params_options.hpp)
+  bool private_link = false;        // grip explore --private
+  std::string dds_config;           // grip sim: a Cyclone configuration of its own (else loopback)
 };
 
 struct World {
