@@ -42,11 +42,16 @@ Result<std::vector<std::uint32_t>> reachable_free_cells(const OccupancyGrid& tru
   return cells;
 }
 
-double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>& reachable) {
+std::size_t sensed_cells(const OccupancyGrid& known, const std::vector<std::uint32_t>& reachable) {
   std::size_t sensed = 0;
   for (const std::uint32_t c : reachable) sensed += known.at(c) != Cell::kUnknown ? 1U : 0U;
+  return sensed;
+}
+
+double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>& reachable) {
   return reachable.empty() ? 1.0
-                           : static_cast<double>(sensed) / static_cast<double>(reachable.size());
+                           : static_cast<double>(sensed_cells(known, reachable)) /
+                                 static_cast<double>(reachable.size());
 }
 
 Result<UnsensedDistance> UnsensedDistance::create(const OccupancyGrid& truth,

@@ -7,6 +7,7 @@
 
 #include "../world/validation.hpp"
 #include "grip/common/assert.hpp"
+#include "sight_line.hpp"
 
 namespace grip {
 
@@ -18,6 +19,7 @@ Status ExplorationTargetConfig::validate(double resolution_m) const {
                             " must be finite and > 0 (got " + detail::format_number(value) + ")");
   };
   if (Status s = positive("give_up_after_s", give_up_after_s); !s) return s;
+  if (Status s = positive("give_up_reached_after_s", give_up_reached_after_s); !s) return s;
   if (Status s = positive("progress_m", progress_m); !s) return s;
   if (kinematics) {
     if (Status s = kinematics->validate(); !s) return s;
@@ -152,14 +154,46 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, 
     target_x_m_ = x;
     target_y_m_ = y;
   }
+  if (const std::uint32_t cell = reached_cell(robot_x_m, robot_y_m); cell != reached_cell_) {
+    reached_cell_ = cell;
+    reached_ns_ = now_ns;
+  }
   // No closer for a long while: dynamics or a gap the chassis cannot pass keep the vehicle from
-  // it. Set it aside; the next choice takes another target, or ends exploration.
-  if (static_cast<double>(now_ns - progress_ns_) > config_.give_up_after_s * 1e9) {
+  // it; or reached, and still there: the sensor does not resolve it from where it is approached.
+  // Set it aside; the next choice takes another target, or ends exploration.
+  const auto elapsed_s = [now_ns](std::int64_t since_ns) {
+    return static_cast<double>(now_ns - since_ns) * 1e-9;
+  };
+  if (elapsed_s(progress_ns_) > config_.give_up_after_s ||
+      (reached_cell_ != FrontierGroup::kNoCell &&
+       elapsed_s(reached_ns_) > config_.give_up_reached_after_s)) {
     frontiers_.give_up(frontiers_.target());
     best_rho_m_ = std::numeric_limits<double>::infinity();
     progress_ns_ = now_ns;
+    reached_cell_ = FrontierGroup::kNoCell;
   }
   return status;
+}
+
+std::uint32_t ExplorationTarget::reached_cell(double robot_x_m, double robot_y_m) const noexcept {
+  const OccupancyGrid& map = *map_;
+  int robot_cx = 0;
+  int robot_cy = 0;
+  if (!map.to_cell(robot_x_m, robot_y_m, robot_cx, robot_cy)) return FrontierGroup::kNoCell;
+  double nearest_m = std::numeric_limits<double>::infinity();
+  std::uint32_t nearest = FrontierGroup::kNoCell;
+  for (const std::uint32_t c : frontiers_.target_cells()) {
+    const double d = std::hypot(map.cell_center_x(map.cell_x(c)) - robot_x_m,
+                                map.cell_center_y(map.cell_y(c)) - robot_y_m);
+    if (d < nearest_m) {
+      nearest_m = d;
+      nearest = c;
+    }
+  }
+  return nearest_m <= config_.frontier.approach_range_m &&
+                 detail::in_sight(map, robot_cx, robot_cy, map.cell_x(nearest), map.cell_y(nearest))
+             ? nearest
+             : FrontierGroup::kNoCell;
 }
 
 }  // namespace grip

@@ -26,22 +26,6 @@ namespace {
 // Simulated time on the wire starts here rather than at 0: a stamp of 0 reads as "never".
 constexpr std::int64_t kEpochNs = 1'000'000'000;
 
-// What the planner left when it said exploration was over: the frontier groups it gave up on
-// and those its vehicle's turning radius cannot reach.
-std::string left_frontiers(const grip_msg_PlannerStatus& status) {
-  std::string left;
-  if (status.frontier_groups_given_up > 0) {
-    left = std::to_string(status.frontier_groups_given_up) +
-           " frontier group(s) the planner gave up on";
-  }
-  if (status.frontier_groups_unreachable > 0) {
-    if (!left.empty()) left += " and ";
-    left += std::to_string(status.frontier_groups_unreachable) +
-            " frontier group(s) the vehicle cannot reach at its turning radius";
-  }
-  return left;
-}
-
 // The limits on how fast the vehicle drives a route for the way it turns.
 template <VehicleModel V>
 TurningLimits turning_limits_of(const V& vehicle) {
@@ -257,30 +241,12 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
   // Whether the run is over: the planner says no reachable frontier remains, or sim time ran
   // out, or coverage stopped growing.
   const auto finished = [&] {
-    if (status && status->exploration_complete &&
-        status->frontier_groups_given_up + status->frontier_groups_unreachable > 0) {
-      // The planner has nothing left but frontiers it could not get to. Only the ground truth
-      // tells whether reachable free space lay behind them: if every reachable cell was sensed,
-      // what is left unknown is out of the vehicle's reach and the run is complete.
-      const std::string left = left_frontiers(*status);
-      if (coverage_of(sensed, *reachable) >= 1.0) {
-        report.result = "complete";
-        report.reason = "left " + left + ", with no reachable free space behind them";
-      } else {
-        report.result = "stuck";
-        report.reason = "left " + left;
-      }
-    } else if (status && status->exploration_complete) {
-      const double coverage = coverage_of(sensed, *reachable);
-      if (coverage >= kCompleteCoverage) {
-        report.result = "complete";
-      } else {
-        report.result = "done-early";
-        char reason[96];
-        std::snprintf(reason, sizeof reason, "the planner said it was done at coverage %.3f",
-                      coverage);
-        report.reason = reason;
-      }
+    if (status && status->exploration_complete) {
+      ExplorationVerdict verdict = verdict_when_planner_done(
+          sensed_cells(sensed, *reachable), reachable->size(), status->frontier_groups_given_up,
+          status->frontier_groups_unreachable);
+      report.result = std::move(verdict.result);
+      report.reason = std::move(verdict.reason);
     } else if (t_sim() >= config.max_sim_time_s) {
       report.result = "timeout";
     } else if (t_sim() - progress_at >= config.stuck_after_s) {

@@ -88,7 +88,8 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
   // Random sequences of map changes (sensed rectangles of free, obstacle or unknown space),
   // each copied in by its box only (its clearance updated near them), against a target created
   // from the whole map (clearance computed from scratch): the same status, groups, target and
-  // approach cells and rho, choice after choice. (No give-up clock runs out in 15 s.) Its rho
+  // approach cells and rho, choice after choice. (No give-up clock runs out in 15 s: a robot
+  // beside a frontier that stays gives it up after give_up_reached_after_s, set to 60 s.) Its rho
   // goes to a planner and comes back as the planner's adopt_goal swaps them, now and then
   // recomputed by the planner on a map of its own. Seeds 7-12 with rho on blocks of 2 x 2 cells
   // (a clearance of 0.4 m allows 0.2 m).
@@ -97,6 +98,7 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
     Random rng(seed);
     OccupancyGrid map = two_frontiers();
     ExplorationTargetConfig config;
+    config.give_up_reached_after_s = 60.0;
     if (seed > 6) {
       config.frontier.clearance_m = 0.4;
       config.frontier.approach_range_m = 0.6;
@@ -205,6 +207,45 @@ TEST_F(ExplorationTargetTest, ProgressOrANewMapRestartsTheGiveUpClock) {
   EXPECT_EQ(target->given_up_groups(), 1U);
 }
 
+TEST_F(ExplorationTargetTest, ATargetReachedThatStaysAFrontierIsGivenUpAfterItsOwnShorterTime) {
+  // GIVEN a robot that stands 0.35 m from the nearest frontier cell, in sight of it, on a map
+  // that does not change (its sensor does not resolve the cell)
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 0), ExplorationStatus::kTarget);
+  const std::vector<std::uint32_t> first = sorted(target->target_cells());
+  // WHEN give_up_reached_after_s (3 s) has passed THEN the target still stands
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 3 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(sorted(target->target_cells()), first);
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  // WHEN more than that has passed THEN it is given up, long before the 60 s of give_up_after_s,
+  // and the next choice is the other group
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 3 * kSecond + 1), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 4 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+  EXPECT_NE(sorted(target->target_cells()), first);
+  // AND the other group, 2 m away, is not reached: it stands for as long as the robot could still
+  // come closer (until give_up_after_s)
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 60 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+}
+
+TEST_F(ExplorationTargetTest, AReachedTargetWhoseNearestCellChangesIsNotGivenUp) {
+  // GIVEN a robot within reach of the frontier, moving along it: each choice has another nearest
+  // cell (as when the cells it reached are sensed and the next ones are nearest)
+  ASSERT_EQ(target->choose(0.5, 2.1, 0.0, 0), ExplorationStatus::kTarget);
+  const std::vector<std::uint32_t> first = sorted(target->target_cells());
+  ASSERT_EQ(target->choose(1.5, 2.1, 0.0, 2 * kSecond), ExplorationStatus::kTarget);
+  // WHEN more than give_up_reached_after_s has passed since it first reached the group, but not
+  // since it reached the cell nearest now THEN the target stands
+  ASSERT_EQ(target->choose(1.5, 2.1, 0.0, 4 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.5, 2.1, 0.0, 5 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  EXPECT_EQ(sorted(target->target_cells()), first);
+  // AND once it stands at one cell for longer, it is given up
+  ASSERT_EQ(target->choose(1.5, 2.1, 0.0, 5 * kSecond + kSecond / 10), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.5, 2.1, 0.0, 6 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+}
+
 TEST(ExplorationTargetConfig, BadValuesAreRefusedByName) {
   const OccupancyGrid map = two_frontiers();
   ExplorationTargetConfig config;
@@ -212,6 +253,12 @@ TEST(ExplorationTargetConfig, BadValuesAreRefusedByName) {
   auto bad = ExplorationTarget::create(map, config);
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("give_up_after_s"), std::string::npos) << bad.error().message;
+  config = {};
+  config.give_up_reached_after_s = -3.0;
+  bad = ExplorationTarget::create(map, config);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("give_up_reached_after_s"), std::string::npos)
+      << bad.error().message;
   config = {};
   config.progress_m = std::nan("");
   bad = ExplorationTarget::create(map, config);

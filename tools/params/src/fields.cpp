@@ -160,6 +160,8 @@ constexpr auto kExploration = std::to_array<Field>({
      "a group given up sets aside the frontier cells this close to it"},
     {"give_up_s", member<&G::exploration, &Ex::give_up_s>,
      "a target not approached for this long is given up"},
+    {"give_up_reached_s", member<&G::exploration, &Ex::give_up_reached_s>,
+     "a target reached and still not sensed this long is given up"},
     {"target_refresh_cycles", member<&G::exploration, &Ex::target_refresh_cycles>,
      "the target is chosen again every this many cycles"},
     {"stuck_after_s", member<&G::exploration, &Ex::stuck_after_s>,

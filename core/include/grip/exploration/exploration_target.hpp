@@ -17,10 +17,15 @@
 // another group or ends exploration. A new target (its nearest cell moved by more than
 // retarget_m), progress, or a changed map restart that clock: a vehicle that still senses new
 // cells is not stuck, and in a small space successive targets lie within a few metres of each
-// other. Once only given-up groups are left they are all taken back, retry_rounds times: a
-// vehicle often gets no closer because its planner found no plan for a while (a real-time run
-// through a period of stalls), not because the group is out of its reach; without the retries
-// a fast vehicle ends `stuck` having given up corners it could reach.
+// other. A target the vehicle has reached is given up sooner: when one of its cells lies within
+// the approach range of the reference point, in sight, and the nearest such cell is still the
+// nearest give_up_reached_after_s later, the sensor does not resolve the unknown beside it from
+// there (a crack or a pocket its rays do not enter), and the vehicle, already where the target
+// is approached from, has no plan that ends closer: waiting for the clock would stand it still.
+// Once only given-up groups are left they are all taken back, retry_rounds times: a vehicle often
+// gets no closer because its planner found no plan for a while (a real-time run through a period of
+// stalls), not because the group is out of its reach; without the retries a fast vehicle ends
+// `stuck` having given up corners it could reach.
 //
 // A vehicle that cannot turn in place (the car) also keeps KinematicReach on the copy: groups
 // whose approach its turning radius cannot reach are passed over as soon as its search is
@@ -45,9 +50,10 @@ namespace grip {
 
 struct ExplorationTargetConfig {
   FrontierConfig frontier;
-  double give_up_after_s = 60.0;   // [s of vehicle time] without progress toward a target
-  double progress_m = 0.5;         // rho_A* must drop by this much to count as progress
-  double retarget_m = 3.0;         // a nearest cell that moves this far is a new target
+  double give_up_after_s = 60.0;         // [s of vehicle time] without progress toward a target
+  double give_up_reached_after_s = 3.0;  // [s of vehicle time] reached and still a frontier
+  double progress_m = 0.5;               // rho_A* must drop by this much to count as progress
+  double retarget_m = 3.0;               // a nearest cell that moves this far is a new target
   std::uint32_t retry_rounds = 1;  // times the groups given up are retried when nothing is left
   // For a vehicle with a minimum turning radius; none for one that turns in place.
   std::optional<KinematicReachConfig> kinematics;
@@ -104,6 +110,9 @@ class ExplorationTarget {
                     ClearanceMap clearance, FrontierMap frontiers, DistanceField rho,
                     std::optional<KinematicReach> reach);
   void prepare_rho() noexcept;
+  // The target's cell nearest to the robot's reference point when it lies within the approach
+  // range, in sight; FrontierGroup::kNoCell otherwise.
+  std::uint32_t reached_cell(double robot_x_m, double robot_y_m) const noexcept;
 
   ExplorationTargetConfig config_;
   std::unique_ptr<OccupancyGrid> map_;  // on the heap: reach_ keeps its address
@@ -124,6 +133,10 @@ class ExplorationTarget {
   // Progress toward the target: its best rho_A* and when (vehicle time) it was reached.
   double best_rho_m_ = std::numeric_limits<double>::infinity();
   std::int64_t progress_ns_ = 0;
+  // The target's cell nearest to the vehicle while it stands within reach and sight of it, and
+  // since when (vehicle time); kNoCell while it does not.
+  std::uint32_t reached_cell_ = FrontierGroup::kNoCell;
+  std::int64_t reached_ns_ = 0;
   std::uint32_t retries_left_;
 };
 

@@ -22,7 +22,9 @@ namespace grip::sim {
 Result<std::vector<std::uint32_t>> reachable_free_cells(const OccupancyGrid& truth, double x_m,
                                                         double y_m, const Footprint& footprint);
 
-// The fraction of `reachable` that `known` has sensed (not unknown); 1 when it is empty.
+// The cells of `reachable` that `known` has sensed (not unknown).
+std::size_t sensed_cells(const OccupancyGrid& known, const std::vector<std::uint32_t>& reachable);
+// Their fraction of `reachable`; 1 when it is empty.
 double coverage_of(const OccupancyGrid& known, const std::vector<std::uint32_t>& reachable);
 
 // How far a point is, along the free cells of `truth` (8-connected, as the planner's rho), from

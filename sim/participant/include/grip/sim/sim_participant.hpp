@@ -10,14 +10,14 @@
 // released on an absolute wall-clock timeline. Lockstep mode: the states say so, and each one
 // waits for the plan made for it before the vehicle runs the next T (the planner then grows a
 // fixed number of edges per cycle), so a seed reproduces a run exactly, at the speed the
-// machine allows. It ends when the planner reports that no
-// reachable frontier remains (complete; stuck when it gave some up), at max_sim_time_s (timeout),
-// when for stuck_after_s of simulated time coverage has not grown and the vehicle has got no
-// nearer to unsensed ground (stuck), or when stopped.
+// machine allows. It ends when the planner reports that no reachable frontier remains (the
+// verdict: exploration_verdict.hpp), at max_sim_time_s (timeout), when for stuck_after_s of
+// simulated time coverage has not grown and the vehicle has got no nearer to unsensed ground
+// (stuck), or when stopped.
 //
 // The verdict is the ground truth's, not the planner's word: `complete` only at a coverage of
-// at least kCompleteCoverage; a planner that said it was done short of that is `done-early`;
-// a vehicle that drove less than kNeverMovedM is `never-moved` (unless complete anyway).
+// at least kCompleteCoverage; a vehicle that drove less than kNeverMovedM is `never-moved`
+// (unless complete anyway).
 
 #include <array>
 #include <atomic>
@@ -30,6 +30,7 @@
 
 #include "grip/common/result.hpp"
 #include "grip/platform/dds/participant.hpp"
+#include "grip/sim/exploration_verdict.hpp"
 #include "grip/sim/plan_executor.hpp"
 #include "grip/vehicles/vehicle_params.hpp"
 #include "grip/world/occupancy_grid.hpp"
@@ -38,9 +39,6 @@
 
 namespace grip::sim {
 
-// The fraction of the reachable free space a run must have sensed to be `complete`; every
-// verdict of completeness (this, `grip bench explore`'s targets) uses it.
-inline constexpr double kCompleteCoverage = 0.97;
 // A vehicle that drove less than this [m] never moved.
 inline constexpr double kNeverMovedM = 0.01;
 

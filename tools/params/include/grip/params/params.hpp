@@ -51,7 +51,8 @@ struct ExplorationParams {
   // Grouping and scoring of frontier cells; clearance_m and rho_cell_m are the planner's
   // (planner.rho_clearance_m, planner.rho_cell_m) and not parameters here.
   FrontierConfig frontier;
-  double give_up_s = 60.0;  // a frontier target not approached for this long is given up
+  double give_up_s = 60.0;         // a frontier target not approached for this long is given up
+  double give_up_reached_s = 3.0;  // a target reached and still a frontier this long is given up
   std::uint32_t target_refresh_cycles = 5;
   double stuck_after_s = 300.0;  // the simulator: no coverage or progress for this long
 
