@@ -7,7 +7,6 @@
 
 #include "../world/validation.hpp"
 #include "grip/common/assert.hpp"
-#include "sight_line.hpp"
 
 namespace grip {
 
@@ -177,9 +176,6 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, 
 
 std::uint32_t ExplorationTarget::reached_cell(double robot_x_m, double robot_y_m) const noexcept {
   const OccupancyGrid& map = *map_;
-  int robot_cx = 0;
-  int robot_cy = 0;
-  if (!map.to_cell(robot_x_m, robot_y_m, robot_cx, robot_cy)) return FrontierGroup::kNoCell;
   double nearest_m = std::numeric_limits<double>::infinity();
   std::uint32_t nearest = FrontierGroup::kNoCell;
   for (const std::uint32_t c : frontiers_.target_cells()) {
@@ -190,10 +186,7 @@ std::uint32_t ExplorationTarget::reached_cell(double robot_x_m, double robot_y_m
       nearest = c;
     }
   }
-  return nearest_m <= config_.frontier.approach_range_m &&
-                 detail::in_sight(map, robot_cx, robot_cy, map.cell_x(nearest), map.cell_y(nearest))
-             ? nearest
-             : FrontierGroup::kNoCell;
+  return nearest_m <= config_.frontier.approach_range_m ? nearest : FrontierGroup::kNoCell;
 }
 
 }  // namespace grip

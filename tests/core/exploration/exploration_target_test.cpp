@@ -208,7 +208,7 @@ TEST_F(ExplorationTargetTest, ProgressOrANewMapRestartsTheGiveUpClock) {
 }
 
 TEST_F(ExplorationTargetTest, ATargetReachedThatStaysAFrontierIsGivenUpAfterItsOwnShorterTime) {
-  // GIVEN a robot that stands 0.35 m from the nearest frontier cell, in sight of it, on a map
+  // GIVEN a robot that stands 0.35 m from the nearest frontier cell on a map
   // that does not change (its sensor does not resolve the cell)
   ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 0), ExplorationStatus::kTarget);
   const std::vector<std::uint32_t> first = sorted(target->target_cells());

@@ -18,10 +18,11 @@
 // retarget_m), progress, or a changed map restart that clock: a vehicle that still senses new
 // cells is not stuck, and in a small space successive targets lie within a few metres of each
 // other. A target the vehicle has reached is given up sooner: when one of its cells lies within
-// the approach range of the reference point, in sight, and the nearest such cell is still the
-// nearest give_up_reached_after_s later, the sensor does not resolve the unknown beside it from
-// there (a crack or a pocket its rays do not enter), and the vehicle, already where the target
-// is approached from, has no plan that ends closer: waiting for the clock would stand it still.
+// the approach range of the reference point and the nearest such cell is still the nearest
+// give_up_reached_after_s later, the sensor does not resolve the unknown beside it from there
+// (a crack or a pocket its rays do not enter: the cell may be out of straight sight from where
+// the vehicle stopped), and the vehicle, already where the target is approached from, has no
+// plan that ends closer: waiting for the clock would stand it still.
 // Once only given-up groups are left they are all taken back, retry_rounds times: a vehicle often
 // gets no closer because its planner found no plan for a while (a real-time run through a period of
 // stalls), not because the group is out of its reach; without the retries a fast vehicle ends
@@ -111,7 +112,7 @@ class ExplorationTarget {
                     std::optional<KinematicReach> reach);
   void prepare_rho() noexcept;
   // The target's cell nearest to the robot's reference point when it lies within the approach
-  // range, in sight; FrontierGroup::kNoCell otherwise.
+  // range; FrontierGroup::kNoCell otherwise.
   std::uint32_t reached_cell(double robot_x_m, double robot_y_m) const noexcept;
 
   ExplorationTargetConfig config_;
@@ -133,7 +134,7 @@ class ExplorationTarget {
   // Progress toward the target: its best rho_A* and when (vehicle time) it was reached.
   double best_rho_m_ = std::numeric_limits<double>::infinity();
   std::int64_t progress_ns_ = 0;
-  // The target's cell nearest to the vehicle while it stands within reach and sight of it, and
+  // The target's cell nearest to the vehicle while it lies within the approach range, and
   // since when (vehicle time); kNoCell while it does not.
   std::uint32_t reached_cell_ = FrontierGroup::kNoCell;
   std::int64_t reached_ns_ = 0;

@@ -88,7 +88,7 @@ struct PlannerParticipantConfig {
   // A frontier target the vehicle gets no closer to (by rho_A*, 0.5 m) for this long, in
   // vehicle time, is given up (FrontierMap::give_up) and the next one chosen.
   double frontier_give_up_s = 60.0;
-  // A target the vehicle stands within reach and sight of (ExplorationTarget) that is still a
+  // A target the vehicle stands within the approach range of (ExplorationTarget) that is still a
   // frontier after this long is given up: the sensor does not resolve it from there.
   double frontier_give_up_reached_s = 3.0;
   // How frontier cells are grouped and groups scored; its clearance_m is the planner's own.
