@@ -160,12 +160,12 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, 
   // No closer for a long while: dynamics or a gap the chassis cannot pass keep the vehicle from
   // it; or reached, and still there: the sensor does not resolve it from where it is approached.
   // Set it aside; the next choice takes another target, or ends exploration.
-  const auto elapsed_s = [now_ns](std::int64_t since_ns) {
-    return static_cast<double>(now_ns - since_ns) * 1e-9;
+  const auto longer_than = [now_ns](std::int64_t since_ns, double limit_s) {
+    return static_cast<double>(now_ns - since_ns) > limit_s * 1e9;
   };
-  if (elapsed_s(progress_ns_) > config_.give_up_after_s ||
+  if (longer_than(progress_ns_, config_.give_up_after_s) ||
       (reached_cell_ != FrontierGroup::kNoCell &&
-       elapsed_s(reached_ns_) > config_.give_up_reached_after_s)) {
+       longer_than(reached_ns_, config_.give_up_reached_after_s))) {
     frontiers_.give_up(frontiers_.target());
     best_rho_m_ = std::numeric_limits<double>::infinity();
     progress_ns_ = now_ns;
