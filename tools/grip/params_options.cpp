@@ -186,6 +186,7 @@ rt::dds::PlannerParticipantConfig planner_participant_config(const params::GripP
   c.frontier = p.exploration.frontier;
   c.frontier_give_up_s = p.exploration.give_up_s;
   c.frontier_give_up_reached_s = p.exploration.give_up_reached_s;
+  c.frontier_rho_margin_m = p.exploration.rho_margin_m;
   c.target_refresh_cycles = p.exploration.target_refresh_cycles;
   c.liveliness_lease = ns_of(p.link.liveliness_lease_s);
   c.policy = p.runtime.policy;

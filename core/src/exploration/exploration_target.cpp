@@ -20,6 +20,7 @@ Status ExplorationTargetConfig::validate(double resolution_m) const {
   if (Status s = positive("give_up_after_s", give_up_after_s); !s) return s;
   if (Status s = positive("give_up_reached_after_s", give_up_reached_after_s); !s) return s;
   if (Status s = positive("progress_m", progress_m); !s) return s;
+  if (Status s = positive("rho_margin_m", rho_margin_m); !s) return s;
   if (kinematics) {
     if (Status s = kinematics->validate(); !s) return s;
   }
@@ -139,9 +140,15 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, 
         frontiers_.update(map, clearance_, robot_x_m, robot_y_m, FrontierMap::MapChange{}, reached);
   }
   if (status != ExplorationStatus::kTarget) return status;
-  prepare_rho();
-  rho_.propagate(frontiers_.approach_cells());
   const FrontierGroup& group = frontiers_.groups()[frontiers_.target()];
+  prepare_rho();
+  // The robot's wavefront measured the vehicle's rho_A* toward the approach cells (from seeds
+  // within the approach range of it, which the margin covers).
+  const double limit_units =
+      (group.rho_m + config_.rho_margin_m) / map.resolution() * DistanceField::kCostUnitsPerCell;
+  rho_.propagate_within(frontiers_.approach_cells(),
+                        static_cast<std::uint32_t>(std::min(
+                            limit_units, static_cast<double>(DistanceField::kUnreachable - 1))));
   if (group.nearest_cell != FrontierGroup::kNoCell) {
     const double x = map.cell_center_x(map.cell_x(group.nearest_cell));
     const double y = map.cell_center_y(map.cell_y(group.nearest_cell));

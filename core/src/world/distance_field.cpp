@@ -233,6 +233,14 @@ std::uint32_t DistanceField::propagate(std::span<const std::uint32_t> target_cel
   return settled_;
 }
 
+std::uint32_t DistanceField::propagate_within(std::span<const std::uint32_t> target_cells,
+                                              std::uint32_t cost_limit) noexcept {
+  GRIP_ASSERT(cost_limit < kUnreachable);
+  start(target_cells);
+  if (!settle(cost_limit)) read_limit_ = cost_limit;
+  return settled_;
+}
+
 void DistanceField::start(std::span<const std::uint32_t> target_cells) noexcept {
   // Only what the last wavefront labelled is not kInf: the cells it settled, and those it left
   // queued beside them. The box of the settled cells grown by one bounds them (inside the
@@ -246,6 +254,7 @@ void DistanceField::start(std::span<const std::uint32_t> target_cells) noexcept 
   }
   reached_ = ReachedBox{};
   settled_ = 0;
+  read_limit_ = kUnreachable;
   std::fill(field_.head.begin(), field_.head.end(), kNil);
   field_.queue = detail::DialQueue{};
   for (const std::uint32_t target : target_cells) {
@@ -314,7 +323,7 @@ double DistanceField::distance_m(double x_m, double y_m) const noexcept {
     return std::numeric_limits<double>::infinity();
   }
   const std::uint32_t cost =
-      field_.cost[padded(static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(v))];
+      read(padded(static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(v)));
   return cost == kInf ? std::numeric_limits<double>::infinity() : cost * metres_per_unit_;
 }
 
@@ -322,7 +331,7 @@ std::uint32_t DistanceField::descend(std::uint32_t cell_index,
                                      std::uint32_t cost_drop) const noexcept {
   const std::uint32_t from = padded(cell_index);
   std::uint32_t p = from;
-  const std::uint32_t start = field_.cost[p];
+  const std::uint32_t start = read(p);
   if (start == kInf) return cell_index;
   const auto w = static_cast<std::int64_t>(padded_width_);
   const std::int64_t offsets[8] = {-1, 1, -w, w, -w - 1, -w + 1, w - 1, w + 1};
@@ -331,13 +340,14 @@ std::uint32_t DistanceField::descend(std::uint32_t cell_index,
                                   diagonal_cost_,   diagonal_cost_};
   // Every step lowers the cost (a neighbour on a shortest path costs the step less), and the
   // padding ring is never reached, so no bounds test is needed.
-  while (field_.cost[p] != 0 && start - field_.cost[p] < cost_drop) {
+  for (std::uint32_t here = start; here != 0 && start - here < cost_drop; here = read(p)) {
     std::uint32_t best = p;
-    std::uint64_t best_via = field_.cost[p];
+    std::uint64_t best_via = here;
     for (int k = 0; k < 8; ++k) {
       const auto n = static_cast<std::uint32_t>(static_cast<std::int64_t>(p) + offsets[k]);
-      const std::uint64_t via = static_cast<std::uint64_t>(field_.cost[n]) + steps[k];
-      if (field_.cost[n] < field_.cost[p] && via <= best_via) {
+      const std::uint32_t cost = read(n);
+      const std::uint64_t via = static_cast<std::uint64_t>(cost) + steps[k];
+      if (cost < here && via <= best_via) {
         best_via = via;
         best = n;
       }

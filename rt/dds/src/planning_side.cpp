@@ -64,6 +64,7 @@ Status PlanningSide<V>::prepare(const VehicleSample& state, bool explore) {
   exploration.target.frontier = config_.frontier;
   exploration.target.give_up_after_s = config_.frontier_give_up_s;
   exploration.target.give_up_reached_after_s = config_.frontier_give_up_reached_s;
+  exploration.target.rho_margin_m = config_.frontier_rho_margin_m;
   exploration.refresh_cycles = config_.target_refresh_cycles;
   exploration.sensing_radius_m = config_.sensing_radius_m;
   exploration.length_weight_per_m = config_.length_weight_per_m;

@@ -92,13 +92,14 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
   // beside a frontier that stays gives it up after give_up_reached_after_s, set to 60 s.) Its rho
   // goes to a planner and comes back as the planner's adopt_goal swaps them, now and then
   // recomputed by the planner on a map of its own. Seeds 7-12 with rho on blocks of 2 x 2 cells
-  // (a clearance of 0.4 m allows 0.2 m).
+  // (a clearance of 0.4 m allows 0.2 m), even seeds with rho cut off 2 m past the robot.
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     SCOPED_TRACE(seed);
     Random rng(seed);
     OccupancyGrid map = two_frontiers();
     ExplorationTargetConfig config;
     config.give_up_reached_after_s = 60.0;
+    config.rho_margin_m = seed % 2 == 0 ? 2.0 : 20.0;  // rho cut off short of the map, or not
     if (seed > 6) {
       config.frontier.clearance_m = 0.4;
       config.frontier.approach_range_m = 0.6;
@@ -145,6 +146,48 @@ TEST(ExplorationTargetCopies, CopyingOnlyTheCellsWrittenChoosesAsATargetMadeFrom
       std::swap(planners_rho, incremental.rho());
     }
   }
+}
+
+TEST(ExplorationTargetRho, RhoIsExactOutToTheVehiclesOwnPlusTheMarginAndThatFarBeyond) {
+  // GIVEN a corridor 50 m long and 1.5 m wide, unknown past its east end, the vehicle 5 m from
+  // that frontier, and a margin of 8 m
+  OccupancyGrid map = OccupancyGrid::create(600, 20, 0.1, 0.0, 0.0, Cell::kObstacle).value();
+  map.fill_rect(0.0, 0.0, 50.0, 1.5, Cell::kFree);
+  map.fill_rect(50.0, 0.0, 60.0, 1.5, Cell::kUnknown);
+  ExplorationTargetConfig config;
+  config.rho_margin_m = 8.0;
+  auto target = ExplorationTarget::create(map, config).value();
+  // WHEN the target is chosen
+  ASSERT_EQ(target.choose(45.0, 0.75, 0.0, 0), ExplorationStatus::kTarget);
+  // THEN rho equals the whole wavefront's out to the vehicle's rho plus the margin
+  ClearanceMap clearance = ClearanceMap::create_for(map).value();
+  DistanceField whole = DistanceField::create(600, 20, 0.1).value();
+  whole.compute(map, clearance, target.approach_cells(), config.frontier.clearance_m);
+  const double own_m = whole.distance_m(45.0, 0.75);
+  ASSERT_NEAR(own_m, 4.5, 0.6);
+  const DistanceField& rho = target.rho();
+  ASSERT_NE(rho.beyond_cost(), DistanceField::kUnreachable);
+  const double beyond_m = rho.beyond_cost() * (0.1 / DistanceField::kCostUnitsPerCell);
+  EXPECT_GE(beyond_m, own_m + config.rho_margin_m - 0.6);
+  EXPECT_LT(beyond_m, own_m + config.rho_margin_m + 0.6);
+  int exact = 0;
+  int beyond = 0;
+  for (double x = 0.45; x < 49.6; x += 0.1) {  // cells the chassis can occupy
+    const double full = whole.distance_m(x, 0.75);
+    if (full < beyond_m) {
+      ASSERT_EQ(rho.distance_m(x, 0.75), full) << x;
+      ++exact;
+    } else {
+      // AND farther cells, which the wavefront did not reach, read that far
+      ASSERT_EQ(rho.distance_m(x, 0.75), beyond_m) << x;
+      ++beyond;
+    }
+  }
+  EXPECT_GT(exact, 100);
+  EXPECT_GT(beyond, 300);
+  // AND cells the chassis cannot occupy stay unreachable
+  EXPECT_EQ(rho.distance_m(45.0, 0.05), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(rho.distance_m(5.0, 0.05), std::numeric_limits<double>::infinity());
 }
 
 TEST_F(ExplorationTargetTest, ATargetWithoutProgressIsGivenUpAfterTheConfiguredTime) {
@@ -264,6 +307,11 @@ TEST(ExplorationTargetConfig, BadValuesAreRefusedByName) {
   bad = ExplorationTarget::create(map, config);
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("progress_m"), std::string::npos) << bad.error().message;
+  config = {};
+  config.rho_margin_m = 0.0;
+  bad = ExplorationTarget::create(map, config);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("rho_margin_m"), std::string::npos) << bad.error().message;
   config = {};
   config.frontier.size_weight = -1.0;
   bad = ExplorationTarget::create(map, config);

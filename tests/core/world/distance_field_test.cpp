@@ -269,6 +269,59 @@ TEST(DistanceFieldTest, AWavefrontInStepsSettlesExactlyTheCellsUpToEachLimit) {
   }
 }
 
+TEST(DistanceFieldTest, AWavefrontCutOffAtALimitReadsExactWithinAndTheLimitBeyond) {
+  // Random maps, targets and limits, one field reused: within the limit every lookup equals the
+  // whole field's; beyond it every traversable cell reads the limit plus one (those cut off from
+  // the targets too) and every other one unreachable; the next wavefront reads exact again.
+  Random random(23);
+  OccupancyGrid grid = random_grid(random, 50, 40, 0.25);
+  const std::vector<bool> traversable = free_cells(grid);
+  DistanceField field = make_field(grid);
+  DistanceField whole = make_field(grid);
+  field.prepare(grid);
+  int rounds_cut_off = 0;
+  int rounds_whole = 0;
+  for (int round = 0; round < 30; ++round) {
+    const std::vector<std::uint32_t> targets = {random.below(grid.cell_count()),
+                                                random.below(grid.cell_count())};
+    const std::vector<std::uint32_t> expected = reference_costs(grid, traversable, targets);
+    whole.compute(grid, targets);
+    const std::uint32_t limit = random.below(3000);
+    field.propagate_within(targets, limit);
+    const bool cut_off = std::any_of(expected.begin(), expected.end(),
+                                     [&](std::uint32_t c) { return c != kInf && c > limit; });
+    EXPECT_EQ(field.beyond_cost(), cut_off ? limit + 1 : kInf) << "round " << round;
+    ++(cut_off ? rounds_cut_off : rounds_whole);
+    for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+      std::uint32_t want = expected[i];
+      if (cut_off && expected[i] > limit) want = traversable[i] ? limit + 1 : kInf;
+      ASSERT_EQ(field.cost_at(i), want) << "round " << round << " cell " << i;
+      const double x = grid.cell_center_x(grid.cell_x(i));
+      const double y = grid.cell_center_y(grid.cell_y(i));
+      ASSERT_EQ(field.distance_m(x, y), field.at(i));
+      // Descending stays within the settled cells, as on the whole field; from beyond the limit
+      // it stays, or steps in.
+      const std::uint32_t down = field.descend(i, 350);
+      if (expected[i] <= limit) {
+        ASSERT_EQ(down, whole.descend(i, 350)) << "round " << round << " cell " << i;
+      } else if (down != i) {
+        ASSERT_LE(field.cost_at(down), limit) << "round " << round << " cell " << i;
+      }
+    }
+    // The next wavefront to the end reads every cell exactly.
+    if (round % 3 == 0) {
+      field.propagate(targets);
+      EXPECT_EQ(field.beyond_cost(), kInf);
+      for (std::uint32_t i = 0; i < grid.cell_count(); ++i) {
+        ASSERT_EQ(field.cost_at(i), expected[i]) << "round " << round << " cell " << i;
+      }
+    }
+  }
+  // Both cases came up.
+  EXPECT_GT(rounds_cut_off, 0);
+  EXPECT_GT(rounds_whole, 0);
+}
+
 TEST(DistanceFieldTest, StraightAndDiagonalRunsCostSeventyAndNinetyNinePerCell) {
   const OccupancyGrid grid = make_grid(20, 20, 0.1);
   DistanceField field = make_field(grid);

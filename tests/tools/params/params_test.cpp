@@ -76,6 +76,7 @@ GripParams all_changed(VehicleKind kind) {
   p.exploration.frontier.give_up_radius_m = 1.5;
   p.exploration.give_up_s = 42.5;
   p.exploration.give_up_reached_s = 2.25;
+  p.exploration.rho_margin_m = 31.5;
   p.exploration.target_refresh_cycles = 2;
   p.exploration.stuck_after_s = 123.4;
   p.link = {232, "/etc/grip/lab \"north\" \\ cyclone.xml", "robot_7", 0.25, "/etc/grip/security"};

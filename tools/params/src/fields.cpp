@@ -162,6 +162,8 @@ constexpr auto kExploration = std::to_array<Field>({
      "a target not approached for this long is given up"},
     {"give_up_reached_s", member<&G::exploration, &Ex::give_up_reached_s>,
      "a target reached and still not sensed this long is given up"},
+    {"rho_margin_m", member<&G::exploration, &Ex::rho_margin_m>,
+     "rho toward the target reaches this far past the vehicle's own"},
     {"target_refresh_cycles", member<&G::exploration, &Ex::target_refresh_cycles>,
      "the target is chosen again every this many cycles"},
     {"stuck_after_s", member<&G::exploration, &Ex::stuck_after_s>,

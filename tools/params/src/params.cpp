@@ -100,6 +100,7 @@ void check_exploration(const SensorParams& s, const ExplorationParams& e, const 
   r.require(frontier.validate(0.0), "frontier: ", "exploration.frontier");
   r.require(finite_positive(e.give_up_s), e.give_up_s, "finite and > 0");
   r.require(finite_positive(e.give_up_reached_s), e.give_up_reached_s, "finite and > 0");
+  r.require(finite_positive(e.rho_margin_m), e.rho_margin_m, "finite and > 0");
   r.require(e.target_refresh_cycles >= 1, e.target_refresh_cycles, "at least 1");
   r.require(finite_positive(e.stuck_after_s), e.stuck_after_s, "finite and > 0");
 }

@@ -8,7 +8,10 @@
 // (rho's wavefront covers the known space, the robot's as far as the choice needs: milliseconds
 // on a large map) and hand its result over, or inline where a run must be reproducible
 // (lockstep). For the same reason it also computes the planner's rho toward the approach cells
-// (Planner::adopt_goal).
+// (Planner::adopt_goal): out to the vehicle's own rho plus rho_margin_m, not over the whole known
+// space. The tree grows around the vehicle, and a state that much farther from the target than
+// the vehicle is as good as lost to the greedy selection whatever its exact rho; on a building's
+// map the rest is most of the known space.
 // The copy, the clearance, the frontier cells and the traversable sets follow the map where it
 // was written, not over the whole map.
 //
@@ -56,6 +59,9 @@ struct ExplorationTargetConfig {
   double progress_m = 0.5;               // rho_A* must drop by this much to count as progress
   double retarget_m = 3.0;               // a nearest cell that moves this far is a new target
   std::uint32_t retry_rounds = 1;  // times the groups given up are retried when nothing is left
+  // [m] rho() runs out to the vehicle's own rho_A* toward the target plus this margin; farther
+  // states read as that far (DistanceField::propagate_within).
+  double rho_margin_m = 20.0;
   // For a vehicle with a minimum turning radius; none for one that turns in place.
   std::optional<KinematicReachConfig> kinematics;
   // Errors name the bad value: FrontierConfig's, KinematicReachConfig's, and any of the above
@@ -103,7 +109,8 @@ class ExplorationTarget {
   // rho_A* toward approach_cells() on this map, with the planner's inflation
   // (frontier.clearance_m, which equals PlannerConfig::rho_clearance_m), for Planner::adopt_goal;
   // the caller may swap its contents for another field of the same size until the next
-  // choose(), which overwrites it. Computed when status() is kTarget.
+  // choose(), which overwrites it. Computed when status() is kTarget, out to rho_margin_m past
+  // the vehicle.
   DistanceField& rho() noexcept { return rho_; }
 
  private:

@@ -107,6 +107,19 @@ class DistanceField {
   bool settle(std::uint32_t cost_limit) noexcept;
   // kUnreachable once the wavefront has run to the end (every label final).
   std::uint32_t settled_limit() const noexcept { return settled_limit_; }
+  // The wavefront out to cost_limit only, for a caller that asks for costs near the targets and
+  // needs only to know that the others are larger (ExplorationTarget: rho toward a target, read
+  // by a tree around a vehicle whose own rho is known). Every traversable cell it did not settle
+  // then reads cost_limit + 1 (a lower bound of its cost, the same for all of them; one cut off
+  // from the targets too), every other as compute() would; a wavefront that ends within the
+  // limit is exact. Returns the cells (blocks) settled, as propagate() does. The next start()
+  // (or propagate()) reads exact costs again.
+  std::uint32_t propagate_within(std::span<const std::uint32_t> target_cells,
+                                 std::uint32_t cost_limit) noexcept;
+  // What cells beyond the last propagate_within() read (kUnreachable: every cost is exact).
+  std::uint32_t beyond_cost() const noexcept {
+    return read_limit_ == kUnreachable ? kUnreachable : read_limit_ + 1;
+  }
 
   // [m] path length from the cell containing (x_m, y_m) to the nearest target; +infinity when
   // unreachable, outside the grid or not finite. O(1).
@@ -116,7 +129,7 @@ class DistanceField {
   // The same in cost units (resolution / 70), kUnreachable when unreachable.
   std::uint32_t cost_at(std::uint32_t cell_index) const noexcept {
     GRIP_ASSERT(cell_index < cell_count());
-    return field_.cost[padded(cell_index)];
+    return read(padded(cell_index));
   }
   bool reachable(std::uint32_t cell_index) const noexcept {
     return cost_at(cell_index) != kUnreachable;
@@ -125,7 +138,8 @@ class DistanceField {
   // dropped by at least `cost_drop` (cost units), or the target it ends at when it is shorter:
   // steepest descent, each step to the neighbour with the least cost plus step (with blocks:
   // from block to block, ending at the centre cell of the last). `cell_index` itself when it is
-  // unreachable or no step is taken. O(steps); asserts cell_index < cell_count().
+  // unreachable or no step is taken; from beyond propagate_within()'s limit, itself or a cell
+  // within it. O(steps); asserts cell_index < cell_count().
   std::uint32_t descend(std::uint32_t cell_index, std::uint32_t cost_drop) const noexcept;
   // The cell containing (x_m, y_m), or kNoCell outside the grid or not finite.
   std::uint32_t cell_at(double x_m, double y_m) const noexcept;
@@ -186,6 +200,12 @@ class DistanceField {
     return (y + 1) * padded_width_ + x + 1;
   }
   std::uint32_t unpadded(std::uint32_t padded_index) const noexcept;
+  // A padded block's cost as the lookups read it (see propagate_within()).
+  std::uint32_t read(std::uint32_t padded_index) const noexcept {
+    const std::uint32_t cost = field_.cost[padded_index];
+    if (cost <= read_limit_) return cost;  // always, unless the wavefront was cut off
+    return traversable_[padded_index] != 0 ? read_limit_ + 1 : kUnreachable;
+  }
 
   int width_;
   int height_;
@@ -214,7 +234,8 @@ class DistanceField {
   ReachedBox reached_;
   std::uint32_t settled_ = 0;  // blocks the wavefront has settled
   std::uint32_t settled_limit_ = kUnreachable;
-  Search field_;  // the wavefront's labels are the field
+  std::uint32_t read_limit_ = kUnreachable;  // propagate_within()'s limit; else every cost reads
+  Search field_;                             // the wavefront's labels are the field
 };
 
 }  // namespace grip

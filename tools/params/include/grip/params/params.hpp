@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "grip/common/result.hpp"
+#include "grip/exploration/exploration_target.hpp"
 #include "grip/exploration/frontier.hpp"
 #include "grip/exploration/path_selection_config.hpp"
 #include "grip/planner/planner_config.hpp"
@@ -53,6 +54,7 @@ struct ExplorationParams {
   FrontierConfig frontier;
   double give_up_s = 60.0;         // a frontier target not approached for this long is given up
   double give_up_reached_s = 3.0;  // a target reached and still a frontier this long is given up
+  double rho_margin_m = ExplorationTargetConfig{}.rho_margin_m;
   std::uint32_t target_refresh_cycles = 5;
   double stuck_after_s = 300.0;  // the simulator: no coverage or progress for this long
 

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "grip/common/result.hpp"
+#include "grip/exploration/exploration_target.hpp"
 #include "grip/exploration/frontier.hpp"
 #include "grip/exploration/path_selection_config.hpp"
 #include "grip/planner/planner_config.hpp"
@@ -91,6 +92,8 @@ struct PlannerParticipantConfig {
   // A target the vehicle stands within the approach range of (ExplorationTarget) that is still a
   // frontier after this long is given up: the sensor does not resolve it from there.
   double frontier_give_up_reached_s = 3.0;
+  // rho toward the target is computed out to the vehicle's own plus this (ExplorationTarget).
+  double frontier_rho_margin_m = ExplorationTargetConfig{}.rho_margin_m;
   // How frontier cells are grouped and groups scored; its clearance_m is the planner's own.
   FrontierConfig frontier;
   // The frontier target is chosen again every this many cycles (1: every cycle). In real time the
