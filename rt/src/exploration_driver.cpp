@@ -90,14 +90,16 @@ bool ExplorationDriver<V>::update(ReplanningCycle<V>& cycle, const OccupancyGrid
                                   bool lockstep) noexcept {
   written_since_request_.add(changes.written);
   choice_ = PathChoice{};
+  if (requested_) ++cycles_since_request_;
   std::uint8_t stage = stage_.load(std::memory_order_acquire);
   if (lockstep && stage != kIdle) {
+    // The last cycle before the next request takes the choice over, whenever it was made.
+    if (cycles_since_request_ + 1 < config_.refresh_cycles) return false;
     static_cast<void>(serve_request());  // not begun by the target thread: chosen here
     while ((stage = stage_.load(std::memory_order_acquire)) == kChoosing) {
       stage_.wait(kChoosing, std::memory_order_acquire);
     }
   }
-  if (requested_) ++cycles_since_request_;
   if (stage == kChosen) {
     take_over(cycle);
     stage = kIdle;

@@ -160,10 +160,7 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, 
     target_x_m_ = x;
     target_y_m_ = y;
   }
-  if (const std::uint32_t cell = reached_cell(robot_x_m, robot_y_m); cell != reached_cell_) {
-    reached_cell_ = cell;
-    reached_ns_ = now_ns;
-  }
+  note_reached(robot_x_m, robot_y_m, now_ns);
   // No closer for a long while: dynamics or a gap the chassis cannot pass keep the vehicle from
   // it; or reached, and still there: the sensor does not resolve it from where it is approached.
   // Set it aside; the next choice takes another target, or ends exploration.
@@ -181,19 +178,27 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, 
   return status;
 }
 
-std::uint32_t ExplorationTarget::reached_cell(double robot_x_m, double robot_y_m) const noexcept {
+void ExplorationTarget::note_reached(double robot_x_m, double robot_y_m,
+                                     std::int64_t now_ns) noexcept {
   const OccupancyGrid& map = *map_;
+  const auto distance_to = [&](std::uint32_t c) {
+    return std::hypot(map.cell_center_x(map.cell_x(c)) - robot_x_m,
+                      map.cell_center_y(map.cell_y(c)) - robot_y_m);
+  };
   double nearest_m = std::numeric_limits<double>::infinity();
   std::uint32_t nearest = FrontierGroup::kNoCell;
   for (const std::uint32_t c : frontiers_.target_cells()) {
-    const double d = std::hypot(map.cell_center_x(map.cell_x(c)) - robot_x_m,
-                                map.cell_center_y(map.cell_y(c)) - robot_y_m);
-    if (d < nearest_m) {
+    if (const double d = distance_to(c); d < nearest_m) {
       nearest_m = d;
       nearest = c;
     }
   }
-  return nearest_m <= config_.frontier.approach_range_m ? nearest : FrontierGroup::kNoCell;
+  const double range_m = config_.frontier.approach_range_m;
+  // A vehicle stopped at the edge of the range sways across it: the cell stays reached until the
+  // vehicle is twice the range away.
+  if (nearest == reached_cell_ && nearest_m <= 2.0 * range_m) return;
+  reached_cell_ = nearest_m <= range_m ? nearest : FrontierGroup::kNoCell;
+  reached_ns_ = now_ns;
 }
 
 }  // namespace grip

@@ -289,6 +289,39 @@ TEST_F(ExplorationTargetTest, AReachedTargetWhoseNearestCellChangesIsNotGivenUp)
   EXPECT_EQ(target->given_up_groups(), 1U);
 }
 
+TEST_F(ExplorationTargetTest, AVehicleSwayingAcrossTheEdgeOfTheRangeStillReachesTheTarget) {
+  // GIVEN a robot stopped where its nearest frontier cell is at the edge of the approach range
+  // (0.5 m), swaying across it: 0.35 m and 0.65 m away in turn
+  const std::vector<std::int64_t> times = {0, kSecond, 2 * kSecond, 3 * kSecond};
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    ASSERT_EQ(target->choose(1.0, i % 2 == 0 ? 2.1 : 1.8, 0.0, times[i]),
+              ExplorationStatus::kTarget);
+  }
+  const std::vector<std::uint32_t> first = sorted(target->target_cells());
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  // WHEN more than give_up_reached_after_s has passed since it first came within the range THEN
+  // the target is given up
+  ASSERT_EQ(target->choose(1.0, 1.8, 0.0, 3 * kSecond + 1), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.8, 0.0, 4 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+  EXPECT_NE(sorted(target->target_cells()), first);
+}
+
+TEST_F(ExplorationTargetTest, AVehicleThatLeavesTwiceTheRangeReachesTheTargetAfresh) {
+  // GIVEN a robot that reached the frontier, then drove 1.25 m away from it and came back
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 0), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 1.2, 0.0, 2 * kSecond), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 3 * kSecond), ExplorationStatus::kTarget);
+  // WHEN more than give_up_reached_after_s has passed since it first reached it, but not since
+  // it came back THEN the target stands
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 5 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  // AND 3 s after it came back it is given up
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 6 * kSecond + 1), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.0, 2.1, 0.0, 7 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+}
+
 TEST(ExplorationTargetConfig, BadValuesAreRefusedByName) {
   const OccupancyGrid map = two_frontiers();
   ExplorationTargetConfig config;

@@ -22,7 +22,8 @@
 // cells is not stuck, and in a small space successive targets lie within a few metres of each
 // other. A target the vehicle has reached is given up sooner: when one of its cells lies within
 // the approach range of the reference point and the nearest such cell is still the nearest
-// give_up_reached_after_s later, the sensor does not resolve the unknown beside it from there
+// give_up_reached_after_s later (the vehicle may sway out to twice the range meanwhile: one
+// stopped at the range's edge does), the sensor does not resolve the unknown beside it from there
 // (a crack or a pocket its rays do not enter: the cell may be out of straight sight from where
 // the vehicle stopped), and the vehicle, already where the target is approached from, has no
 // plan that ends closer: waiting for the clock would stand it still.
@@ -118,9 +119,10 @@ class ExplorationTarget {
                     ClearanceMap clearance, FrontierMap frontiers, DistanceField rho,
                     std::optional<KinematicReach> reach);
   void prepare_rho() noexcept;
-  // The target's cell nearest to the robot's reference point when it lies within the approach
-  // range; FrontierGroup::kNoCell otherwise.
-  std::uint32_t reached_cell(double robot_x_m, double robot_y_m) const noexcept;
+  // Notes the target's cell nearest to the robot's reference point as reached (reached_cell_,
+  // since now_ns) when it lies within the approach range, and keeps it so while the robot stays
+  // within twice that range of it.
+  void note_reached(double robot_x_m, double robot_y_m, std::int64_t now_ns) noexcept;
 
   ExplorationTargetConfig config_;
   std::unique_ptr<OccupancyGrid> map_;  // on the heap: reach_ keeps its address
@@ -141,8 +143,8 @@ class ExplorationTarget {
   // Progress toward the target: its best rho_A* and when (vehicle time) it was reached.
   double best_rho_m_ = std::numeric_limits<double>::infinity();
   std::int64_t progress_ns_ = 0;
-  // The target's cell nearest to the vehicle while it lies within the approach range, and
-  // since when (vehicle time); kNoCell while it does not.
+  // The target's cell nearest to the vehicle once it lies within the approach range, and since
+  // when (vehicle time); kNoCell while it does not (see note_reached()).
   std::uint32_t reached_cell_ = FrontierGroup::kNoCell;
   std::int64_t reached_ns_ = 0;
   std::uint32_t retries_left_;

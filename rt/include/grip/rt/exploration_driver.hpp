@@ -9,9 +9,11 @@
 // hand-over is one atomic stage: kIdle (the planning thread owns the target: it copies its map
 // in and notes where the robot will be), kRequested (due), kChoosing (the target thread
 // chooses), kChosen (the planning thread takes the choice over, then kIdle). In real time the
-// first cycle after the choice takes it over. In lockstep the cycle after the request does,
-// waiting for the choice if it is not made yet (or making it, if the target thread has not
-// begun): a seed reproduces a run, and the choice still runs beside the growth.
+// first cycle after the choice takes it over. In lockstep the last cycle before the next request
+// does (the one after the request when that is every cycle), waiting for the choice if it is not
+// made yet (or making it, if the target thread has not begun): a seed reproduces a run, and the
+// choice runs beside the growth of the cycles in between, as it runs beside the cycles' periods in
+// real time, rather than holding up the next cycle.
 //
 // create() allocates; everything else never allocates and never throws.
 
@@ -54,8 +56,8 @@ class ExplorationDriver {
                                           const PlannerConfig& planner);
 
   // Planning thread, before every cycle while exploring: takes over a chosen target (lockstep:
-  // the one requested the cycle before, once chosen), or requests a new one when it is due and
-  // returns true (wake the target thread). `changes`: what this cycle wrote into `grid`.
+  // the cycle before the next request is due, once chosen), or requests a new one when it is due
+  // and returns true (wake the target thread). `changes`: what this cycle wrote into `grid`.
   bool update(ReplanningCycle<V>& cycle, const OccupancyGrid& grid, std::uint64_t plan_start_ns,
               const MapChanges& changes, bool lockstep) noexcept;
   // Planning thread: chooses a target now and heads the cycle for it (the first target).
