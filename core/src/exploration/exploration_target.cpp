@@ -181,14 +181,12 @@ ExplorationStatus ExplorationTarget::choose(double robot_x_m, double robot_y_m, 
 void ExplorationTarget::note_reached(double robot_x_m, double robot_y_m,
                                      std::int64_t now_ns) noexcept {
   const OccupancyGrid& map = *map_;
-  const auto distance_to = [&](std::uint32_t c) {
-    return std::hypot(map.cell_center_x(map.cell_x(c)) - robot_x_m,
-                      map.cell_center_y(map.cell_y(c)) - robot_y_m);
-  };
   double nearest_m = std::numeric_limits<double>::infinity();
   std::uint32_t nearest = FrontierGroup::kNoCell;
   for (const std::uint32_t c : frontiers_.target_cells()) {
-    if (const double d = distance_to(c); d < nearest_m) {
+    const double d = std::hypot(map.cell_center_x(map.cell_x(c)) - robot_x_m,
+                                map.cell_center_y(map.cell_y(c)) - robot_y_m);
+    if (d < nearest_m) {
       nearest_m = d;
       nearest = c;
     }

@@ -5,15 +5,14 @@
 // weight), and when to set a group aside because the vehicle gets no closer to it.
 //
 // It works on its own copy of the map, so that a runtime can run it beside the planning thread
-// (rho's wavefront covers the known space, the robot's as far as the choice needs: milliseconds
-// on a large map) and hand its result over, or inline where a run must be reproducible
-// (lockstep). For the same reason it also computes the planner's rho toward the approach cells
-// (Planner::adopt_goal): out to the vehicle's own rho plus rho_margin_m, not over the whole known
-// space. The tree grows around the vehicle, and a state that much farther from the target than
-// the vehicle is as good as lost to the greedy selection whatever its exact rho; on a building's
-// map the rest is most of the known space.
-// The copy, the clearance, the frontier cells and the traversable sets follow the map where it
-// was written, not over the whole map.
+// (its wavefronts run as far as the target and the vehicle's distance from it: milliseconds on a
+// large map) and hand its result over, or inline. For the same reason it also computes the
+// planner's rho toward the approach cells (Planner::adopt_goal): out to the vehicle's own rho plus
+// rho_margin_m, not over the whole known space. The tree grows around the vehicle, and a state that
+// much farther from the target than the vehicle is as good as lost to the greedy selection whatever
+// its exact rho; on a building's map the rest is most of the known space. The copy, the clearance,
+// the frontier cells and the traversable sets follow the map where it was written, not over the
+// whole map.
 //
 // Giving up: a target the vehicle gets no closer to (its rho_A* down by progress_m) for
 // give_up_after_s of vehicle time is given up (FrontierMap::give_up), and the next choice takes
