@@ -507,11 +507,15 @@ void FrontierMap::collect_approach_cells(const OccupancyGrid& grid, const Chassi
           }
         });
   }
-  // On until each is labelled (a label, final or not, means reached) or the wavefront ends.
+  // On until each is labelled (a label, final or not, means reached) or the wavefront ends, a
+  // search step at a time: the wavefront has come as far as the target already, and the group's
+  // other approach cells usually lie a few metres beyond (doubling would cover the known space
+  // again for them).
   const auto unlabelled = [this](std::uint32_t a) { return !field_.reachable(a); };
-  std::uint32_t limit = std::max(field_.settled_limit(), search_step_cost());
+  const std::uint32_t step = search_step_cost();
+  std::uint32_t limit = std::max(field_.settled_limit(), step);
   while (std::any_of(approach_.begin(), approach_.end(), unlabelled) && !field_.settle(limit)) {
-    limit = next_limit(limit);
+    limit = limit > kUnreachable - step ? kUnreachable : limit + step;
   }
   approach_.truncate(static_cast<std::size_t>(
       std::remove_if(approach_.begin(), approach_.end(), unlabelled) - approach_.begin()));
