@@ -214,8 +214,9 @@ TEST(ExplorationRun, AVelocityControlledRobotExploresASmallSceneWithoutCollision
   EXPECT_GE(r.coverage, 0.97);
 }
 
-// Lockstep reproduces a run whichever thread chooses the targets: the cycle after a request
-// takes its choice over, made by the target thread beside it or, not begun there, by itself.
+// Lockstep reproduces a run whichever thread chooses the targets: the last cycle before the next
+// request takes the choice over, made by the target thread beside it or, not begun there, by
+// itself.
 TEST(ExplorationRun, ATargetThreadBesideTheLoopChangesNothingInLockstep) {
   const OccupancyGrid truth = small_scene();
   const DdVelocity robot = DdVelocity::create({}).value();
