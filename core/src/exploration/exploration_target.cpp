@@ -192,10 +192,18 @@ void ExplorationTarget::note_reached(double robot_x_m, double robot_y_m,
     }
   }
   const double range_m = config_.frontier.approach_range_m;
+  // On an approach cell (rho 0) the vehicle is as near as rho can bring it even when it is beyond
+  // the range (the cell's centre is within it): the path selector, whose sight of the target is
+  // coarser, may see no target cell from there and then has nothing nearer to offer.
+  int cx = 0;
+  int cy = 0;
+  const bool approached =
+      nearest_m <= range_m ||
+      (map.to_cell(robot_x_m, robot_y_m, cx, cy) && rho_.cost_at(map.index(cx, cy)) == 0);
   // A vehicle stopped at the edge of the range sways across it: the cell stays reached until the
   // vehicle is twice the range away.
-  if (nearest == reached_cell_ && nearest_m <= 2.0 * range_m) return;
-  reached_cell_ = nearest_m <= range_m ? nearest : FrontierGroup::kNoCell;
+  if (nearest == reached_cell_ && (approached || nearest_m <= 2.0 * range_m)) return;
+  reached_cell_ = approached ? nearest : FrontierGroup::kNoCell;
   reached_ns_ = now_ns;
 }
 

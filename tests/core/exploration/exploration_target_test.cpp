@@ -322,6 +322,27 @@ TEST_F(ExplorationTargetTest, AVehicleThatLeavesTwiceTheRangeReachesTheTargetAfr
   EXPECT_EQ(target->given_up_groups(), 1U);
 }
 
+TEST_F(ExplorationTargetTest, AVehicleOnAnApproachCellIsThereEvenBeyondTheRangeOfEveryCell) {
+  // GIVEN a robot 0.54 m from the frontier (the range is 0.5 m) whose cell's centre is 0.5 m from
+  // it: the cell is an approach cell (rho 0), so rho can bring the robot no nearer, while the
+  // path selector's coarser sight may see no target cell from there
+  const double range_m = config.frontier.approach_range_m;
+  ASSERT_EQ(target->choose(1.05, 1.91, 0.0, 0), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->rho().distance_m(1.05, 1.91), 0.0);
+  for (const std::uint32_t c : target->target_cells()) {
+    ASSERT_GT(std::hypot(map.cell_center_x(map.cell_x(c)) - 1.05,
+                         map.cell_center_y(map.cell_y(c)) - 1.91),
+              range_m);
+  }
+  // WHEN it stands there for give_up_reached_after_s (3 s) THEN the target still stands
+  ASSERT_EQ(target->choose(1.05, 1.91, 0.0, 3 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 0U);
+  // WHEN longer THEN it is given up as reached, long before give_up_after_s (60 s)
+  ASSERT_EQ(target->choose(1.05, 1.91, 0.0, 3 * kSecond + 1), ExplorationStatus::kTarget);
+  ASSERT_EQ(target->choose(1.05, 1.91, 0.0, 4 * kSecond), ExplorationStatus::kTarget);
+  EXPECT_EQ(target->given_up_groups(), 1U);
+}
+
 TEST(ExplorationTargetConfig, BadValuesAreRefusedByName) {
   const OccupancyGrid map = two_frontiers();
   ExplorationTargetConfig config;

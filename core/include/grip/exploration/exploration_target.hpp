@@ -119,8 +119,8 @@ class ExplorationTarget {
                     std::optional<KinematicReach> reach);
   void prepare_rho() noexcept;
   // Notes the target's cell nearest to the robot's reference point as reached (reached_cell_,
-  // since now_ns) when it lies within the approach range, and keeps it so while the robot stays
-  // within twice that range of it.
+  // since now_ns) when it lies within the approach range or the robot stands on an approach cell,
+  // and keeps it so while the robot stays within twice that range of it or on an approach cell.
   void note_reached(double robot_x_m, double robot_y_m, std::int64_t now_ns) noexcept;
 
   ExplorationTargetConfig config_;
@@ -142,8 +142,8 @@ class ExplorationTarget {
   // Progress toward the target: its best rho_A* and when (vehicle time) it was reached.
   double best_rho_m_ = std::numeric_limits<double>::infinity();
   std::int64_t progress_ns_ = 0;
-  // The target's cell nearest to the vehicle once it lies within the approach range, and since
-  // when (vehicle time); kNoCell while it does not (see note_reached()).
+  // The target's cell nearest to the vehicle once reached, and since when (vehicle time);
+  // kNoCell while not reached (see note_reached()).
   std::uint32_t reached_cell_ = FrontierGroup::kNoCell;
   std::int64_t reached_ns_ = 0;
   std::uint32_t retries_left_;
