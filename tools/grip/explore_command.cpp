@@ -282,7 +282,7 @@ int finish(const ExploreOptions& o, const params::GripParams& p, const World& wo
 }
 
 sim::SimRunConfig sim_config(const ExploreOptions& o, const params::GripParams& p,
-                             const World& world) {
+                             const World& world, bool with_planner) {
   sim::SimRunConfig c = sim_run_config(p);
   c.world = world.name;
   c.start_x_m = world.start.x_m;
@@ -293,6 +293,10 @@ sim::SimRunConfig sim_config(const ExploreOptions& o, const params::GripParams& 
   c.max_sim_time_s = o.max_sim_time_s;
   c.drop_plans = o.drop_plans;
   c.drop_seed = o.seed;
+  // grip sim waits for a planner elsewhere as long as told; grip explore's own planner ends the
+  // run when it does not start in time, and the vehicle waits the one plan's wait beyond that.
+  const auto timeout = startup_timeout(o.startup_timeout_s).value();  // validate() checked it
+  c.first_plan_wait = !with_planner || timeout.count() == 0 ? timeout : timeout + c.planner_wait;
   return c;
 }
 
@@ -312,6 +316,7 @@ Status validate(const ExploreOptions& o) {
                             ")");
   }
   if (!(o.max_sim_time_s > 0.0)) return invalid_argument("--max-sim-time must be > 0");
+  if (auto timeout = startup_timeout(o.startup_timeout_s); !timeout) return timeout.error();
   // An output that cannot be written is refused now, not after the run.
   const std::pair<const std::string*, const char*> outputs[] = {
       {&o.report, "--report"}, {&o.image, "--image"}, {&o.cycle_trace, "--cycle-trace"}};
@@ -390,12 +395,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
     pc.dds_config = link.dds_config;
     if (trace) pc.on_cycle = [&trace](const rt::CycleRecord& r) { trace->write(r); };
     pc.seed = o.seed;
-    auto timeout = startup_timeout(o.startup_timeout_s);
-    if (!timeout) {
-      std::cerr << command << ": " << timeout.error().message << "\n";
-      return 2;
-    }
-    pc.startup_timeout = *timeout;
+    pc.startup_timeout = startup_timeout(o.startup_timeout_s).value();  // validate() checked it
     pc.security = *security;
     auto created = rt::dds::PlannerParticipant::create(pc);
     if (!created) {
@@ -424,7 +424,7 @@ int run_explore(const ExploreOptions& o, bool with_planner) {
       }
     });
   }
-  sim::SimRunConfig config = sim_config(o, *p, *world);
+  sim::SimRunConfig config = sim_config(o, *p, *world, with_planner);
   config.dds_config = link.dds_config;
   config.security = *security;
   if (!o.dds_config.empty()) {
@@ -538,6 +538,10 @@ void register_explore_commands(CLI::App& app) {
   add_common_options(s, *sim_options);
   s->add_option("--dds-config", sim_options->dds_config,
                 "Cyclone DDS XML configuration file (default: the built-in loopback-only one)");
+  s->add_option("--startup-timeout", sim_options->startup_timeout_s,
+                "Give up if no planner's first plan has come after this many seconds (0: wait); "
+                "a planner syncing a large map or authenticating takes seconds")
+      ->capture_default_str();
   s->callback([sim_options]() {
     if (const int rc = run_explore(*sim_options, false); rc != 0) throw CLI::RuntimeError(rc);
   });

@@ -259,9 +259,18 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     }
     return report.result != "error";
   };
+  // The wait for the next plan, 0 for ever.
+  const auto plan_wait_ns = [&] {
+    return (planner_seen ? config.planner_wait : config.first_plan_wait).count();
+  };
+  const auto waited_too_long = [&](std::int64_t since_ns) {
+    return plan_wait_ns() > 0 && platform::now_ns() - since_ns > plan_wait_ns();
+  };
   const auto no_planner = [&] {
-    report.reason = "no plan from a planner within " +
-                    std::to_string(config.planner_wait.count() / 1'000'000'000) + " s";
+    char reason[64];
+    std::snprintf(reason, sizeof reason, "no plan from a planner within %g s",
+                  static_cast<double>(plan_wait_ns()) * 1e-9);
+    report.reason = reason;
   };
 
   if (config.lockstep) {
@@ -274,8 +283,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
       std::int64_t repeated = asked;
       const grip_msg_Plan* plan = nullptr;
       while (plan == nullptr && !stop.load(std::memory_order_acquire)) {
+        if (waited_too_long(asked)) break;
         const std::int64_t now = platform::now_ns();
-        if (now - asked > config.planner_wait.count()) break;
         if (now - repeated > 250'000'000) {
           // A planner that joined late never saw it; one that did ignores the repeat.
           static_cast<void>((*link)->publish_state(state_msg));
@@ -306,7 +315,7 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
              static_cast<std::int64_t>(static_cast<double>(n) * dt * 1e9 / config.time_scale);
     };
     while (!stop.load(std::memory_order_acquire)) {
-      if (!planner_seen && platform::now_ns() - wall0 > config.planner_wait.count()) {
+      if (!planner_seen && waited_too_long(wall0)) {
         no_planner();
         break;
       }

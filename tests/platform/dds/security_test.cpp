@@ -225,13 +225,13 @@ TEST_F(DdsSecurity, AnUnauthenticatedInjectorChangesNothingInASecuredExploration
   const fs::path planner_report = dir_ / "planner.json";
   auto planner = grip::testing::ChildProcess::spawn(
       {"/bin/sh", "-c",
-       "exec " + kGrip + " planner --robot dd-vel --domain 168 --startup-timeout 60 --security " +
+       "exec " + kGrip + " planner --robot dd-vel --domain 168 --startup-timeout 120 --security " +
            dir_.string() + " --report " + planner_report.string() + " > " +
            (dir_ / "planner.log").string() + " 2>&1"});
   ASSERT_TRUE(planner.has_value());
   const ProcessRun sim = run(kGrip + " sim --lockstep --robot dd-vel --map " + map.string() +
-                             " --max-sim-time 300 --domain 168 --security " + dir_.string() +
-                             " --report " + (dir_ / "sim.json").string());
+                             " --max-sim-time 300 --startup-timeout 120 --domain 168 --security " +
+                             dir_.string() + " --report " + (dir_ / "sim.json").string());
   planner->kill(SIGINT);
   planner->wait();
   EXPECT_EQ(sim.status, 0) << sim.output;  // complete

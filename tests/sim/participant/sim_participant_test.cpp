@@ -234,5 +234,29 @@ TEST(SimParticipant, AVehicleThatNeverMovedSaysSo) {
   EXPECT_NE(r.reason.find("done-early"), std::string::npos) << r.reason;
 }
 
+TEST(SimParticipant, WithoutAPlannerTheRunEndsAtTheFirstPlansWaitAndSaysSo) {
+  constexpr pdds::DomainId kDomain = 192;
+  const OccupancyGrid truth = room_with_shelf();
+  for (const bool lockstep : {true, false}) {
+    SCOPED_TRACE(lockstep ? "lockstep" : "real time");
+    // GIVEN no planner on the domain, and a first plan's wait of 1 s (each later plan's: 30 s)
+    SimRunConfig config;
+    config.domain = kDomain;
+    config.topic_prefix = ::grip::testing::private_topic_prefix();
+    config.world = "room with a shelf";
+    config.start_x_m = 2.0;
+    config.start_y_m = 5.0;
+    config.lockstep = lockstep;
+    config.first_plan_wait = 1s;
+    const std::atomic<bool> stop{false};
+    // WHEN the vehicle waits THEN the run ends as an error naming the first plan's wait
+    const Result<SimRunReport> report = run_simulation(config, truth, stop);
+    ASSERT_TRUE(report.ok()) << report.error().message;
+    EXPECT_EQ(report->result, "error");
+    EXPECT_EQ(report->reason, "no plan from a planner within 1 s");
+    EXPECT_EQ(report->distance_m, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace grip::sim

@@ -65,7 +65,11 @@ struct SimRunConfig {
   // getting nearer; a planner that makes no progress gives its target up sooner (60 s).
   double stuck_after_s = 300.0;
   std::chrono::nanoseconds liveliness_lease{std::chrono::milliseconds(500)};
-  std::chrono::nanoseconds planner_wait{std::chrono::seconds(30)};  // for the first plan
+  // How long the vehicle waits for a plan before the run ends as an error: the first (the
+  // planner's start-up: a map in sync, a secured handshake; 0: for ever), and in lockstep each
+  // one after it (a planner gone).
+  std::chrono::nanoseconds first_plan_wait{std::chrono::seconds(30)};
+  std::chrono::nanoseconds planner_wait{std::chrono::seconds(30)};
   // Fault injection: each plan received is lost with this probability before the controller
   // sees it (a stand-in for a plan that came too late), drawn from a stream seeded by
   // drop_seed, so that a lockstep run still reproduces. The planner must notice from the
