@@ -1,5 +1,6 @@
 // `grip bench scale` explores one map made larger for real (here: the small room, and 2 x 2 of
-// it side by side, at 10 cells a metre, then the room at 20, briefly, in lockstep): a row per
+// it side by side, at 10 cells a metre, then the room at 20, briefly, in lockstep; and the room
+// as a ROS map, tiled as one): a row per
 // map with its cell count, the planner's start-up, memory and every cycle phase, one sensor
 // range for all of them, and the chart of their p99 against the cell count where
 // tools/grip/scale_chart.hpp's layout puts them; and bad options are refused.
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "grip_command.hpp"
@@ -125,6 +127,76 @@ TEST(BenchScaleCommand, ExploresTheMapAtEachResolutionAndTabulatesItsCost) {
   expect_cycle_markers(json + ".png", j.at("runs"));
 }
 
+std::string contents(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The small room as a ROS map (100 x 100 pixels at 0.1 m), with a block of unknown pixels in a
+// corner; its path (the YAML).
+std::string write_small_room_ros_map(const std::string& stem) {
+  const char* rows[] = {"@@@@@@@@@@", "@........@", "@........@", "@...@@...@", "@...@@...@",
+                        "@........@", "@.@@@@@..@", "@........@", "@........@", "@@@@@@@@@@"};
+  const std::string dir = ::testing::TempDir();
+  std::ofstream pgm(dir + stem + ".pgm", std::ios::binary);
+  pgm << "P5\n100 100\n255\n";
+  for (int y = 0; y < 100; ++y) {
+    for (int x = 0; x < 100; ++x) {
+      const bool unknown = x >= 10 && x < 20 && y >= 10 && y < 20;
+      pgm << static_cast<char>(unknown ? 205 : rows[y / 10][x / 10] == '.' ? 254 : 0);
+    }
+  }
+  std::ofstream(dir + stem + ".yaml") << "image: " << stem << ".pgm\nresolution: 0.1\n"
+                                      << "origin: [-2.0, 3.5, 0.0]\nnegate: 0\n"
+                                      << "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  return dir + stem + ".yaml";
+}
+
+TEST(BenchScaleCommand, ARosMapIsTiledAsARosMapAtItsOwnResolution) {
+  const std::string out_dir = ::testing::TempDir() + "grip-bench-scale-ros";
+  const std::string json = ::testing::TempDir() + "grip-bench-scale-ros.json";
+  std::filesystem::remove_all(out_dir);
+  const std::string map = write_small_room_ros_map("grip-bench-scale-ros-room");
+  const CommandRun r =
+      grip::testing::run_grip("bench scale --map " + map + " --tiles 1,2 --max-sim-time 5 --out " +
+                              out_dir + " --json " + json);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j.at("runs").size(), 2U) << r.output;
+  EXPECT_EQ(j.at("runs")[0].at("cells").get<int>(), 100 * 100);
+  EXPECT_EQ(j.at("runs")[1].at("cells").get<int>(), 200 * 200);
+  EXPECT_TRUE(j.at("runs")[1].at("subdivision").is_null()) << j.dump();
+  for (const auto& run : j.at("runs")) {
+    EXPECT_EQ(run.at("collisions").get<int>(), 0) << run.dump();
+    EXPECT_EQ(run.at("cycles").get<int>(), 101) << run.dump();
+  }
+  // The tiling: a YAML at the map's resolution and origin, and its PGM four rooms in a square,
+  // the unknown pixels obstacles as the simulator reads them.
+  const std::string yaml_text = contents(out_dir + "/grip-bench-scale-ros-room-tiled2.yaml");
+  EXPECT_NE(yaml_text.find("image: grip-bench-scale-ros-room-tiled2.pgm\n"), std::string::npos)
+      << yaml_text;
+  EXPECT_NE(yaml_text.find("resolution: 0.1\n"), std::string::npos) << yaml_text;
+  EXPECT_NE(yaml_text.find("origin: [-2, 3.5, 0]\n"), std::string::npos) << yaml_text;
+  const std::string pgm = contents(out_dir + "/grip-bench-scale-ros-room-tiled2.pgm");
+  const std::string header = "P5\n200 200\n255\n";
+  ASSERT_EQ(pgm.size(), header.size() + 200 * 200);
+  ASSERT_EQ(pgm.substr(0, header.size()), header);
+  const auto pixel = [&](int x, int y) {
+    return static_cast<unsigned char>(
+        pgm[header.size() + static_cast<std::size_t>(y) * 200 + static_cast<std::size_t>(x)]);
+  };
+  for (const int dx : {0, 100}) {
+    for (const int dy : {0, 100}) {
+      EXPECT_EQ(pixel(dx + 25, dy + 15), 254) << dx << ", " << dy;  // free
+      EXPECT_EQ(pixel(dx + 45, dy + 35), 0) << dx << ", " << dy;    // the pillar
+      EXPECT_EQ(pixel(dx + 15, dy + 15), 0) << dx << ", " << dy;    // unknown: an obstacle
+    }
+  }
+}
+
 TEST(BenchScaleCommand, BadOptionsAreRefusedNamingWhatIsWrong) {
   CommandRun r = grip::testing::run_grip("bench scale");
   EXPECT_NE(r.status, 0);
@@ -142,6 +214,11 @@ TEST(BenchScaleCommand, BadOptionsAreRefusedNamingWhatIsWrong) {
                               " --tiles 17");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--tiles"), std::string::npos) << r.output;
+  r = grip::testing::run_grip("bench scale --map " +
+                              write_small_room_ros_map("grip-bench-scale-ros-bad") +
+                              " --subdivisions 20");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--subdivisions is for MovingAI maps"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // `grip bench scale`: how grip's cost grows with the map. The same exploration (one vehicle,
-// one seed, a fixed simulated time) on one MovingAI map made larger, up to about 16 M cells:
-// tiled (n x n copies side by side: a larger building at the same resolution) and subdivided
-// (finer cells: the same building at a higher resolution). Every run has the same sensor (its
+// one seed, a fixed simulated time) on one map made larger, up to about 16 M cells: tiled (n x n
+// copies side by side: a larger building at the same resolution) and, for a MovingAI map,
+// subdivided (finer cells: the same building at a higher resolution; a ROS map is explored at
+// its own). Every run has the same sensor (its
 // range in metres: what `auto` gives the untiled map), so that the map's size is the only thing
 // that changes; left to `auto` it would reach a tenth of the tiled map. Each run is a private
 // `grip explore` child process with its report and cycle trace kept in one directory. A row per
@@ -37,8 +38,9 @@ namespace {
 struct BenchScaleOptions {
   std::string map;
   std::vector<int> tiles{1, 2, 4, 6};
-  // 10 cm cells (coarser than 12.5 cm ones do not leave the frontier approach its range).
-  std::vector<int> subdivisions{10};
+  // MovingAI: grid cells per map cell; none given: 10 cm cells (coarser than 12.5 cm ones do not
+  // leave the frontier approach its range). A ROS map has its own resolution.
+  std::vector<int> subdivisions;
   std::string robot = "dd-vel";
   double max_sim_time_s = 60.0;
   double sensor_range_m = 0.0;  // 0: a tenth of the untiled map's larger side
@@ -54,8 +56,8 @@ static_assert(std::size(kPhases) == kScalePhases.size());
 
 struct Run {
   int tiles = 1;
-  int subdivision = 0;
-  std::string map;  // the file explored: the map, or its tiling in the output directory
+  int subdivision = 0;  // grid cells per MovingAI cell side; 0: a ROS map's own cells
+  std::string map;      // the file explored: the map, or its tiling in the output directory
   std::string stem;
   int exit_status = -1;
   nlohmann::json report;                    // empty when the run left none
@@ -97,7 +99,7 @@ bool read_trace(const std::string& path, Run& r) {
 }
 
 // The map n x n times side by side, as a MovingAI file; false if it cannot be written.
-bool write_tiled(const sim::LoadedMap& map, int n, const std::string& path) {
+bool write_tiled_movingai(const sim::LoadedMap& map, int n, const std::string& path) {
   const int sub = map.cells_per_pixel;
   const int width = map.grid.width() / sub;
   const int height = map.grid.height() / sub;
@@ -117,14 +119,42 @@ bool write_tiled(const sim::LoadedMap& map, int n, const std::string& path) {
   return static_cast<bool>(out.flush());
 }
 
+// The map n x n times side by side, as a ROS map (`path` the YAML, its PGM beside it) at the
+// map's resolution and origin; false if it cannot be written. The ground truth holds free cells
+// and obstacles only (unknown pixels became obstacles when it was read), and so does the tiling.
+bool write_tiled_ros(const sim::LoadedMap& map, int n, const std::string& path) {
+  const OccupancyGrid& grid = map.grid;
+  const std::filesystem::path yaml(path);
+  const std::filesystem::path pgm = std::filesystem::path(yaml).replace_extension(".pgm");
+  std::ofstream image(pgm, std::ios::binary);
+  image << "P5\n" << grid.width() * n << " " << grid.height() * n << "\n255\n";
+  constexpr char kFreePixel = static_cast<char>(254);
+  constexpr char kObstaclePixel = 0;
+  std::string line;
+  // Row 0 of the image is the top of the map; grid row 0 its bottom.
+  for (int tile_row = 0; tile_row < n; ++tile_row) {
+    for (int row = grid.height() - 1; row >= 0; --row) {
+      line.clear();
+      for (int x = 0; x < grid.width(); ++x) {
+        line += grid.at(x, row) == Cell::kFree ? kFreePixel : kObstaclePixel;
+      }
+      for (int tile = 0; tile < n; ++tile) image << line;
+    }
+  }
+  if (!image.flush()) return false;
+  std::ofstream out(yaml);
+  out << std::setprecision(15) << "image: " << pgm.filename().string()
+      << "\nmode: trinary\nresolution: " << grid.resolution() << "\norigin: [" << grid.origin_x()
+      << ", " << grid.origin_y() << ", 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  return static_cast<bool>(out.flush());
+}
+
 std::vector<std::string> explore_args(const BenchScaleOptions& o, const Run& r,
                                       double sensor_range_m, const std::string& self) {
   std::vector<std::string> args{self,
                                 "explore",
                                 "--map",
                                 r.map,
-                                "--movingai-subdivision",
-                                std::to_string(r.subdivision),
                                 vehicle_args(o.robot)[0],
                                 o.robot,
                                 "--max-sim-time",
@@ -136,6 +166,9 @@ std::vector<std::string> explore_args(const BenchScaleOptions& o, const Run& r,
                                 o.out_dir + "/" + r.stem + ".json",
                                 "--cycle-trace",
                                 o.out_dir + "/" + r.stem + ".cycles.csv"};
+  if (r.subdivision > 0) {
+    args.insert(args.end(), {"--movingai-subdivision", std::to_string(r.subdivision)});
+  }
   if (o.real_time) {
     args.insert(args.end(), {"--time-scale", "1"});
   } else {
@@ -164,8 +197,9 @@ void print_table(const std::vector<Run>& runs) {
     const nlohmann::json& j = r.report;
     const nlohmann::json startup =
         j.is_null() ? nlohmann::json() : j.value("planner_startup", nlohmann::json());
-    std::cout << std::fixed << std::setw(6) << r.tiles << std::setw(5) << r.subdivision
-              << std::setw(11) << r.cells << std::setprecision(2) << std::setw(9)
+    std::cout << std::fixed << std::setw(6) << r.tiles << std::setw(5)
+              << (r.subdivision > 0 ? std::to_string(r.subdivision) : "-") << std::setw(11)
+              << r.cells << std::setprecision(2) << std::setw(9)
               << (startup.is_null() ? NAN : startup.value("map_sync_s", NAN)) << std::setw(11)
               << (startup.is_null() ? NAN : startup.value("planning_s", NAN))
               << std::setprecision(0) << std::setw(9)
@@ -188,11 +222,21 @@ int run_bench(const BenchScaleOptions& o) {
   if (const int rc = prepare_bench_children(command, o.out_dir, self); rc != 0) return rc;
   sim::MapLoadOptions one_cell;
   one_cell.movingai_subdivision = 1;
-  auto loaded = sim::load_movingai_map(o.map, one_cell);  // refuses a bad file before any run
+  auto loaded = sim::load_map(o.map, one_cell);  // refuses a bad file before any run
   if (!loaded) {
     std::cerr << command << ": " << loaded.error().message << "\n";
     return 2;
   }
+  const bool ros = loaded->format == sim::MapFormat::kRosMapServer;
+  if (ros && !o.subdivisions.empty()) {
+    std::cerr << command << ": --subdivisions is for MovingAI maps; " << o.map
+              << " is a ROS map, explored at its own resolution\n";
+    return 2;
+  }
+  // 0: the map's own cells (ROS).
+  const std::vector<int> subdivisions = ros                      ? std::vector<int>{0}
+                                        : o.subdivisions.empty() ? std::vector<int>{10}
+                                                                 : o.subdivisions;
   const double sensor_range_m =
       o.sensor_range_m > 0.0 ? o.sensor_range_m : sim::RangeSensor::default_radius_m(loaded->grid);
   const std::string stem = std::filesystem::path(o.map).stem().string();
@@ -200,20 +244,21 @@ int run_bench(const BenchScaleOptions& o) {
   for (const int n : o.tiles) {
     std::string map = o.map;
     if (n > 1) {
-      map = o.out_dir + "/" + stem + "-tiled" + std::to_string(n) + ".map";
-      if (!write_tiled(*loaded, n, map)) {
+      map = o.out_dir + "/" + stem + "-tiled" + std::to_string(n) + (ros ? ".yaml" : ".map");
+      if (!(ros ? write_tiled_ros(*loaded, n, map) : write_tiled_movingai(*loaded, n, map))) {
         std::cerr << command << ": cannot write " << map << "\n";
         return 1;
       }
     }
-    for (const int s : o.subdivisions) {
+    for (const int s : subdivisions) {
       Run r;
       r.tiles = n;
       r.subdivision = s;
       r.map = map;
+      const int side = std::max(s, 1);
       r.cells = static_cast<std::uint64_t>(loaded->grid.cell_count()) *
-                static_cast<std::uint64_t>(n * n * s * s);
-      r.stem = stem + "-t" + std::to_string(n) + "-x" + std::to_string(s);
+                static_cast<std::uint64_t>(n * n * side * side);
+      r.stem = stem + "-t" + std::to_string(n) + (s > 0 ? "-x" + std::to_string(s) : "");
       runs.push_back(std::move(r));
     }
   }
@@ -230,8 +275,8 @@ int run_bench(const BenchScaleOptions& o) {
     if (child) r.exit_status = child->wait();
     r.report = read_child_report(report);
     if (!read_trace(o.out_dir + "/" + r.stem + ".cycles.csv", r)) r.phases.clear();
-    std::cout << "  " << r.tiles << " x " << r.tiles << " tiles, x" << r.subdivision << " ("
-              << r.cells
+    std::cout << "  " << r.tiles << " x " << r.tiles << " tiles"
+              << (r.subdivision > 0 ? ", x" + std::to_string(r.subdivision) : "") << " (" << r.cells
               << " cells): " << (r.report.is_null() ? "no report" : r.report.value("result", "?"))
               << (child ? "" : " (" + child.error().message + ")") << std::endl;
   }
@@ -245,9 +290,13 @@ int run_bench(const BenchScaleOptions& o) {
     j["sensor_range_m"] = sensor_range_m;
     nlohmann::json rows = nlohmann::json::array();
     for (const Run& r : runs) {
-      nlohmann::json row{{"tiles", r.tiles},   {"subdivision", r.subdivision},
-                         {"cells", r.cells},   {"exit_status", r.exit_status},
-                         {"missed", r.missed}, {"report", o.out_dir + "/" + r.stem + ".json"}};
+      nlohmann::json row{{"tiles", r.tiles},
+                         {"cells", r.cells},
+                         {"exit_status", r.exit_status},
+                         {"missed", r.missed},
+                         {"report", o.out_dir + "/" + r.stem + ".json"}};
+      // null for a ROS map: its own cells
+      row["subdivision"] = r.subdivision > 0 ? nlohmann::json(r.subdivision) : nlohmann::json();
       if (!r.report.is_null()) {
         for (const char* key : {"result", "coverage", "collisions", "cycles", "wall_time_s",
                                 "peak_rss_mb", "planner_startup"}) {
@@ -293,7 +342,8 @@ void register_bench_scale_command(CLI::App& bench) {
   auto o = std::make_shared<BenchScaleOptions>();
   CLI::App* cmd = bench.add_subcommand(
       "scale", "How the cost grows with the map: one exploration at several resolutions");
-  cmd->add_option("--map", o->map, "A MovingAI .map file (its cells are 1 m)")
+  cmd->add_option("--map", o->map,
+                  "A MovingAI .map file (its cells are 1 m) or a ROS map_server .yaml")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--tiles", o->tiles,
@@ -302,10 +352,10 @@ void register_bench_scale_command(CLI::App& bench) {
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   cmd->add_option("--subdivisions", o->subdivisions,
-                  "Grid cells per MovingAI cell side, a run each with every --tiles")
+                  "Grid cells per MovingAI cell side, a run each with every --tiles (default: "
+                  "10; not for a ROS map)")
       ->delimiter(',')
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--robot", o->robot, "dd-vel, dd-accel, car, or a parameter file (.yaml)")
       ->check(CLI::IsMember({"dd-vel", "dd-accel", "car"}) | CLI::ExistingFile)
       ->capture_default_str();
