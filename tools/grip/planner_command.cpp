@@ -201,10 +201,12 @@ int run_planner(const PlannerOptions& o) {
             << ", publish thread " << r.publish_policy << ", time scale " << r.time_scale
             << "\n  plans: " << r.plans_committed << " committed, " << r.plans_published
             << " published, " << r.plans_superseded << " superseded, " << r.write_failures
-            << " write failures\n  rejected: " << r.rejected_vehicle_state << " states, "
-            << r.rejected_map_update << " map updates, " << r.rejected_goal << " goals; map gaps "
-            << r.map_gaps << ", heals " << r.map_heals << "; vehicle lost " << r.vehicle_losses
-            << " times, off its plans " << r.resyncs << " times\n"
+            << " write failures, " << r.plans_rewritten
+            << " written again (for a lockstep vehicle that still waited)\n  rejected: "
+            << r.rejected_vehicle_state << " states, " << r.rejected_map_update << " map updates, "
+            << r.rejected_goal << " goals; map gaps " << r.map_gaps << ", heals " << r.map_heals
+            << "; vehicle lost " << r.vehicle_losses << " times, off its plans " << r.resyncs
+            << " times\n"
             << "  planning thread after warm-up: "
             << (r.allocations_counted ? std::to_string(r.heap_allocations_in_loop)
                                       : std::string("(not counted)"))
@@ -224,7 +226,8 @@ int run_planner(const PlannerOptions& o) {
     j["plans"] = {{"committed", r.plans_committed},
                   {"published", r.plans_published},
                   {"superseded", r.plans_superseded},
-                  {"write_failures", r.write_failures}};
+                  {"write_failures", r.write_failures},
+                  {"rewritten", r.plans_rewritten}};
     j["rejected"] = {{"vehicle_state", r.rejected_vehicle_state},
                      {"map_update", r.rejected_map_update},
                      {"goal", r.rejected_goal}};

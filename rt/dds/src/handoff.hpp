@@ -88,6 +88,12 @@ struct Handoffs {
   // Set by the planning thread once a plan's end is settled, before it extracts the plan: the
   // publish thread wakes meanwhile and is running when the plan is handed over.
   std::atomic<bool> plan_coming{false};
+  // Set by the receive thread when a lockstep vehicle repeats the state of this sequence number
+  // (0: none): it still waits for its plan. The publish thread writes the last plan again if that
+  // plan answered it: a plan written before the vehicle's reader matched (a secured handshake
+  // completes per endpoint), or lost while the vehicle's participant was rediscovered, is
+  // otherwise never seen, and the lockstep run stands still.
+  std::atomic<std::uint64_t> plan_wanted_for{0};
 };
 
 }  // namespace grip::rt::dds

@@ -518,6 +518,7 @@ PlannerParticipantReport PlannerParticipantFor<V>::final_report(PlannerParticipa
       handoffs_.plans->published() - publish.published - publish.write_failures;
   report.plans_published = publish.published;
   report.write_failures = publish.write_failures;
+  report.plans_rewritten = publish.rewritten;
   if (handoffs_.publish_timing->update()) {
     report.plan_handoff = handoffs_.publish_timing->read_buffer().handoff;
     report.plan_write = handoffs_.publish_timing->read_buffer().write;

@@ -32,9 +32,16 @@ void PublishSide::run(const std::atomic<bool>& stop_threads) {
       const std::int64_t watch_until = platform::now_ns() + kPlanComingWatchNs;
       while (!handoffs_.plans->fresh() && platform::now_ns() < watch_until) platform::cpu_relax();
     }
+    const std::uint64_t wanted = handoffs_.plan_wanted_for.exchange(0, std::memory_order_acquire);
     if (handoffs_.plans->update()) {
       publish_plan(handoffs_.plans->read_buffer(), timing);
       handoffs_.publish_timing->write(timing);
+    } else if (wanted != 0 && published_.load(std::memory_order_relaxed) > 0 &&
+               handoffs_.plans->read_buffer().state_sequence == wanted) {
+      // A failed write is tried again at the vehicle's next repeat.
+      if (write_plan(handoffs_.plans->read_buffer())) {
+        rewritten_.fetch_add(1, std::memory_order_relaxed);
+      }
     }
     if (handoffs_.statuses->update()) publish_status(handoffs_.statuses->read_buffer());
   }
@@ -44,11 +51,25 @@ PublishCounts PublishSide::counts() const {
   PublishCounts counts;
   if (policy_set_.load(std::memory_order_acquire)) counts.policy = policy_;
   counts.published = published_.load();
+  counts.rewritten = rewritten_.load();
   counts.write_failures = write_failures_.load();
   return counts;
 }
 
 void PublishSide::publish_plan(const PlanSlot& slot, PublishTiming& timing) {
+  const std::int64_t write_start = platform::now_ns();
+  const bool written = write_plan(slot);
+  const std::int64_t write_end = platform::now_ns();
+  if (written) {
+    timing.handoff.record(write_start - static_cast<std::int64_t>(slot.committed_monotonic_ns));
+    timing.write.record(write_end - write_start);
+    published_.fetch_add(1, std::memory_order_relaxed);
+  } else {
+    write_failures_.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+bool PublishSide::write_plan(const PlanSlot& slot) {
   grip_msg_Plan msg{};
   msg.cycle = slot.cycle;
   msg.start_time_ns = slot.start_time_ns;
@@ -65,16 +86,7 @@ void PublishSide::publish_plan(const PlanSlot& slot, PublishTiming& timing) {
   msg.steps._length = slot.steps;
   msg.steps._maximum = slot.steps;
   msg.steps._release = false;
-  const std::int64_t write_start = platform::now_ns();
-  const bool written = dds_.plans.write(msg).ok();
-  const std::int64_t write_end = platform::now_ns();
-  if (written) {
-    timing.handoff.record(write_start - static_cast<std::int64_t>(slot.committed_monotonic_ns));
-    timing.write.record(write_end - write_start);
-    published_.fetch_add(1, std::memory_order_relaxed);
-  } else {
-    write_failures_.fetch_add(1, std::memory_order_relaxed);
-  }
+  return dds_.plans.write(msg).ok();
 }
 
 void PublishSide::publish_status(const CycleStatus& s) {

@@ -30,6 +30,7 @@ struct PublishEntities {
 struct PublishCounts {
   std::string policy;  // the thread's scheduling: "fifo", or "other (why)"
   std::uint64_t published = 0;
+  std::uint64_t rewritten = 0;  // plans written again for a lockstep vehicle still waiting
   std::uint64_t write_failures = 0;
 };
 
@@ -59,6 +60,7 @@ class PublishSide {
 
  private:
   void publish_plan(const PlanSlot& slot, PublishTiming& timing);
+  bool write_plan(const PlanSlot& slot);
   void publish_status(const CycleStatus& status);
 
   VehicleKind kind_;
@@ -71,6 +73,7 @@ class PublishSide {
   std::atomic<double> time_scale_{1.0};
   std::atomic<std::uint64_t> published_{0};
   std::atomic<std::uint64_t> write_failures_{0};
+  std::atomic<std::uint64_t> rewritten_{0};
   std::string policy_;  // written by the publish thread before policy_set_
   std::atomic<bool> policy_set_{false};
 };

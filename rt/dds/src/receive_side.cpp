@@ -135,11 +135,16 @@ void ReceiveSide<V>::take_states(pdds::SampleBuffer<grip_msg_VehicleState, 8>& b
       // A lockstep simulator repeats the state it waits on (for a planner that joins late):
       // a repeat is neither new nor an error. Planned for again only by a standby (the vehicle
       // follows another planner): its earlier answer was refused, and once the followed one
-      // has gone silent, an answer to the repeat is what the vehicle fails over to.
+      // has gone silent, an answer to the repeat is what the vehicle fails over to. The
+      // followed planner's answer did not arrive: it is written again (Handoffs::plan_wanted_for).
       if (msg.stamp_ns == last_state_stamp_ && msg.sequence_number == last_state_sequence_) {
         const bool standby =
             msg.plan_incarnation != 0 && msg.plan_incarnation != planner_incarnation_;
-        if (standby) hand_over_state(msg);
+        if (standby) {
+          hand_over_state(msg);
+        } else {
+          handoffs_.plan_wanted_for.store(msg.sequence_number, std::memory_order_release);
+        }
         continue;
       }
       const std::int64_t now = platform::now_ns();

@@ -234,7 +234,8 @@ TEST_F(DdsSecurity, AnUnauthenticatedInjectorChangesNothingInASecuredExploration
                              dir_.string() + " --report " + (dir_ / "sim.json").string());
   planner->kill(SIGINT);
   planner->wait();
-  EXPECT_EQ(sim.status, 0) << sim.output;  // complete
+  EXPECT_EQ(sim.status, 0) << sim.output << "\nplanner:\n"  // complete
+                           << run("tail -n 40 " + (dir_ / "planner.log").string()).output;
   EXPECT_NE(sim.output.find("collisions 0,"), std::string::npos) << sim.output;
   EXPECT_NE(sim.output.find("(rejected 0,"), std::string::npos) << sim.output;
   const ProcessRun rejected = run("grep -A 4 '\"rejected\"' " + planner_report.string());

@@ -246,6 +246,44 @@ TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
   EXPECT_EQ(result->rejected_goal, 3U);
 }
 
+TEST(PlannerParticipant, ALockstepVehicleThatRepeatsAnAnsweredStateGetsItsPlanAgain) {
+  // A lockstep vehicle repeats the state it waits on until its plan comes. A plan written before
+  // the vehicle's reader matched it (a secured handshake completes endpoint by endpoint) never
+  // comes: here the vehicle drops the first one, as if it had not arrived.
+  constexpr platform::dds::DomainId kDomain = 74;
+  auto vehicle = VehicleSide::create(kDomain, VehicleKind::kDdVelocity);
+  ASSERT_NE(vehicle, nullptr);
+  ASSERT_TRUE(vehicle->publish_goal());
+  RunningPlanner planner(planner_config(kDomain, 0.0));
+  ASSERT_NE(planner.planner, nullptr) << planner.result->error().message;
+  VehicleLink& link = vehicle->link();
+  grip_msg_VehicleState waiting = vehicle->state();
+  waiting.lockstep = true;
+  std::vector<std::uint64_t> cycles;  // of the plans answering `waiting`, as they came
+  const auto repeat_until = [&](std::size_t answers) {
+    return [&, answers] {
+      static_cast<void>(link.publish_state(waiting));
+      link.answer_map_requests(waiting.stamp_ns);
+      link.take_plans([&](const grip_msg_Plan& plan) {
+        EXPECT_EQ(plan.state_sequence, waiting.sequence_number) << "a plan for no state sent";
+        cycles.push_back(plan.cycle);
+      });
+      std::this_thread::sleep_for(240ms);  // the simulator repeats every 250 ms
+      return cycles.size() >= answers;
+    };
+  };
+  ASSERT_TRUE(eventually(repeat_until(1), 20000ms)) << "no plan answered the state";
+  // WHEN the vehicle goes on repeating the state THEN the same plan comes again
+  ASSERT_TRUE(eventually(repeat_until(2), 5000ms)) << "the plan was not written again";
+  EXPECT_EQ(cycles[1], cycles[0]);
+  planner.planner->request_stop();
+  const Result<PlannerParticipantReport>& result = planner.join();
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  EXPECT_GE(result->plans_rewritten, 1U);
+  EXPECT_EQ(result->plans_published, 1U) << "planned for the repeat as for a new state";
+  EXPECT_EQ(result->rejected_vehicle_state, 0U);
+}
+
 TEST(PlannerParticipant, AVehicleBrakingOffItsPlansIsPlannedForFromWhereBrakingTakesIt) {
   // The controller reports that it follows no plan (it brakes on its contingency, say after a
   // plan came late) while moving at 1 m/s: the planner must plan the next cycle from where

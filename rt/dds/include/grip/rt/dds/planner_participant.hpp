@@ -132,6 +132,7 @@ struct PlannerParticipantReport {
   std::uint64_t plans_published = 0;
   std::uint64_t plans_superseded = 0;  // replaced by a newer plan before the writer took them
   std::uint64_t write_failures = 0;
+  std::uint64_t plans_rewritten = 0;  // written again for a lockstep vehicle that still waited
   std::uint64_t rejected_vehicle_state = 0;
   std::uint64_t rejected_map_update = 0;
   std::uint64_t rejected_goal = 0;
