@@ -36,8 +36,7 @@ void PublishSide::run(const std::atomic<bool>& stop_threads) {
     if (handoffs_.plans->update()) {
       publish_plan(handoffs_.plans->read_buffer(), timing);
       handoffs_.publish_timing->write(timing);
-    } else if (wanted != 0 && published_.load(std::memory_order_relaxed) > 0 &&
-               handoffs_.plans->read_buffer().state_sequence == wanted) {
+    } else if (wanted != 0 && handoffs_.plans->read_buffer().state_sequence == wanted) {
       // A failed write is tried again at the vehicle's next repeat.
       if (write_plan(handoffs_.plans->read_buffer())) {
         rewritten_.fetch_add(1, std::memory_order_relaxed);

@@ -286,7 +286,8 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
         if (waited_too_long(asked)) break;
         const std::int64_t now = platform::now_ns();
         if (now - repeated > 250'000'000) {
-          // A planner that joined late never saw it; one that did ignores the repeat.
+          // A planner that joined late never saw it; one that answered it writes its plan
+          // again (it may have been written before this reader matched).
           static_cast<void>((*link)->publish_state(state_msg));
           repeated = now;
         }
