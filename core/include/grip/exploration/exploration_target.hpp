@@ -20,12 +20,13 @@
 // retarget_m), progress, or a changed map restart that clock: a vehicle that still senses new
 // cells is not stuck, and in a small space successive targets lie within a few metres of each
 // other. A target the vehicle has reached is given up sooner: when one of its cells lies within
-// the approach range of the reference point and the nearest such cell is still the nearest
-// give_up_reached_after_s later (the vehicle may sway out to twice the range meanwhile: one
-// stopped at the range's edge does), the sensor does not resolve the unknown beside it from there
-// (a crack or a pocket its rays do not enter: the cell may be out of straight sight from where
-// the vehicle stopped), and the vehicle, already where the target is approached from, has no
-// plan that ends closer: waiting for the clock would stand it still.
+// the approach range of the reference point, or the reference point's cell is one the target is
+// approached from (rho 0), and the nearest cell is still the nearest give_up_reached_after_s
+// later (the vehicle may sway out to twice the range meanwhile: one stopped at the range's edge
+// does), the sensor does not resolve the unknown beside it from there (a crack or a pocket its
+// rays do not enter: the cell may be out of straight sight from where the vehicle stopped), and
+// the vehicle, already where the target is approached from, has no plan that ends closer:
+// waiting for the clock would stand it still.
 // Once only given-up groups are left they are all taken back, retry_rounds times: a vehicle often
 // gets no closer because its planner found no plan for a while (a real-time run through a period of
 // stalls), not because the group is out of its reach; without the retries a fast vehicle ends
