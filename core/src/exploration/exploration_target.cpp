@@ -197,9 +197,8 @@ void ExplorationTarget::note_reached(double robot_x_m, double robot_y_m,
   // coarser, may see no target cell from there and then has nothing nearer to offer.
   int cx = 0;
   int cy = 0;
-  const bool approached =
-      nearest_m <= range_m ||
-      (map.to_cell(robot_x_m, robot_y_m, cx, cy) && rho_.cost_at(map.index(cx, cy)) == 0);
+  const bool approached = nearest_m <= range_m || (map.to_cell(robot_x_m, robot_y_m, cx, cy) &&
+                                                   rho_.cost_at(map.index(cx, cy)) == 0);
   // A vehicle stopped at the edge of the range sways across it: the cell stays reached until the
   // vehicle is twice the range away.
   if (nearest == reached_cell_ && (approached || nearest_m <= 2.0 * range_m)) return;
