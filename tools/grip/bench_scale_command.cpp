@@ -2,8 +2,8 @@
 // one seed, a fixed simulated time) on one map made larger, up to about 16 M cells: tiled (n x n
 // copies side by side: a larger building at the same resolution) and, for a MovingAI map,
 // subdivided (finer cells: the same building at a higher resolution; a ROS map is explored at
-// its own). Every run has the same sensor (its
-// range in metres: what `auto` gives the untiled map), so that the map's size is the only thing
+// its own). Every run has the same sensor (its range in metres: what `auto` gives the untiled
+// map), so that the map's size is the only thing
 // that changes; left to `auto` it would reach a tenth of the tiled map. Each run is a private
 // `grip explore` child process with its report and cycle trace kept in one directory. A row per
 // map: cells, the planner's start-up (map in sync, planning), the process's peak memory, and
@@ -98,6 +98,23 @@ bool read_trace(const std::string& path, Run& r) {
   return true;
 }
 
+// n x n copies of a map of width x height file cells, `pixel(x, row)` the character of each
+// (grid row 0 is the map's bottom), written top row first as both file formats store them, each
+// row followed by `row_end`.
+template <typename Pixel>
+void write_tiles(std::ostream& out, int width, int height, int n, Pixel pixel,
+                 const char* row_end) {
+  std::string line;
+  for (int tile_row = 0; tile_row < n; ++tile_row) {
+    for (int row = height - 1; row >= 0; --row) {
+      line.clear();
+      for (int x = 0; x < width; ++x) line += pixel(x, row);
+      for (int tile = 0; tile < n; ++tile) out << line;
+      out << row_end;
+    }
+  }
+}
+
 // The map n x n times side by side, as a MovingAI file; false if it cannot be written.
 bool write_tiled_movingai(const sim::LoadedMap& map, int n, const std::string& path) {
   const int sub = map.cells_per_pixel;
@@ -105,17 +122,10 @@ bool write_tiled_movingai(const sim::LoadedMap& map, int n, const std::string& p
   const int height = map.grid.height() / sub;
   std::ofstream out(path);
   out << "type octile\nheight " << height * n << "\nwidth " << width * n << "\nmap\n";
-  // Row 0 of the file is the top of the map; grid row 0 its bottom.
-  for (int tile_row = 0; tile_row < n; ++tile_row) {
-    for (int row = height - 1; row >= 0; --row) {
-      std::string line;
-      for (int x = 0; x < width; ++x) {
-        line += map.grid.at(map.grid.index(x * sub, row * sub)) == Cell::kFree ? '.' : '@';
-      }
-      for (int tile = 0; tile < n; ++tile) out << line;
-      out << "\n";
-    }
-  }
+  write_tiles(
+      out, width, height, n,
+      [&](int x, int row) { return map.grid.at(x * sub, row * sub) == Cell::kFree ? '.' : '@'; },
+      "\n");
   return static_cast<bool>(out.flush());
 }
 
@@ -130,17 +140,10 @@ bool write_tiled_ros(const sim::LoadedMap& map, int n, const std::string& path) 
   image << "P5\n" << grid.width() * n << " " << grid.height() * n << "\n255\n";
   constexpr char kFreePixel = static_cast<char>(254);
   constexpr char kObstaclePixel = 0;
-  std::string line;
-  // Row 0 of the image is the top of the map; grid row 0 its bottom.
-  for (int tile_row = 0; tile_row < n; ++tile_row) {
-    for (int row = grid.height() - 1; row >= 0; --row) {
-      line.clear();
-      for (int x = 0; x < grid.width(); ++x) {
-        line += grid.at(x, row) == Cell::kFree ? kFreePixel : kObstaclePixel;
-      }
-      for (int tile = 0; tile < n; ++tile) image << line;
-    }
-  }
+  write_tiles(
+      image, grid.width(), grid.height(), n,
+      [&](int x, int row) { return grid.at(x, row) == Cell::kFree ? kFreePixel : kObstaclePixel; },
+      "");
   if (!image.flush()) return false;
   std::ofstream out(yaml);
   out << std::setprecision(15) << "image: " << pgm.filename().string()
