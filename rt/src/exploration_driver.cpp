@@ -1,6 +1,5 @@
 #include "grip/rt/exploration_driver.hpp"
 
-#include <algorithm>
 #include <utility>
 
 namespace grip::rt {
@@ -36,13 +35,9 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
   selection.length_weight_per_m = config.length_weight_per_m;
   selection.reference_speed_m_s = config.reference_speed_m_s;
   selection.course_change_m = config.course_change_m;
-  selection.reverse_length_factor = config.reverse_length_factor;
   bool turns_in_place_at_bounded_acceleration = false;
-  // A metre in reverse weighs as the time it takes at top speed against a metre forward.
-  double reverse_slowness = 1.0;
   if constexpr (LimitsAcceleration<V>) {
     turns_in_place_at_bounded_acceleration = vehicle.min_turning_radius_m() == 0.0;
-    reverse_slowness = std::max(1.0, vehicle.max_speed_m_s() / vehicle.max_reverse_speed_m_s());
   }
   if (selection.reference_speed_m_s == kPathWeightOfVehicle) {
     selection.reference_speed_m_s = turns_in_place_at_bounded_acceleration
@@ -51,9 +46,6 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
   }
   if (selection.course_change_m == kPathWeightOfVehicle) {
     selection.course_change_m = turns_in_place_at_bounded_acceleration ? kCourseChangeM : 0.0;
-  }
-  if (selection.reverse_length_factor == kPathWeightOfVehicle) {
-    selection.reverse_length_factor = reverse_slowness;
   }
   selection.sensing_radius_m =
       config.sensing_radius_m > 0.0 ? config.sensing_radius_m : grid.width_m() / 10.0;

@@ -41,8 +41,6 @@ TEST(ExplorationDriver, LeftToTheVehicleTheWeightIsTheDurationAndTheCourseOnlyFo
   // The sensing radius left at 0 is a tenth of the map's width.
   EXPECT_DOUBLE_EQ(accel->sensing_radius_m, 0.8);
 
-  EXPECT_EQ(accel->reverse_length_factor, 1.0);  // it backs up as fast as it drives forward
-
   for (const auto& weight : {path_weight_of(Car::create({}).value(), left),
                              path_weight_of(DdVelocity::create({}).value(), left)}) {
     ASSERT_TRUE(weight.ok()) << weight.error().message;
@@ -51,33 +49,18 @@ TEST(ExplorationDriver, LeftToTheVehicleTheWeightIsTheDurationAndTheCourseOnlyFo
   }
 }
 
-TEST(ExplorationDriver, LeftToTheVehicleAMetreInReverseWeighsItsTopSpeedsRatio) {
-  CarParams slow_reverse;
-  slow_reverse.max_speed_m_s = 3.0;
-  slow_reverse.min_speed_m_s = -0.5;
-  const auto car = path_weight_of(Car::create(slow_reverse).value(), ExplorationDriverConfig{});
-  ASSERT_TRUE(car.ok()) << car.error().message;
-  EXPECT_DOUBLE_EQ(car->reverse_length_factor, 6.0);
-  // dd-vel has no acceleration bound to back up slower by: the paper's length.
-  const auto dd_vel = path_weight_of(DdVelocity::create({}).value(), ExplorationDriverConfig{});
-  ASSERT_TRUE(dd_vel.ok()) << dd_vel.error().message;
-  EXPECT_EQ(dd_vel->reverse_length_factor, 1.0);
-}
-
 TEST(ExplorationDriver, GivenValuesAreTakenAsTheyAreForEveryVehicle) {
   ExplorationDriverConfig given;
   given.sensing_radius_m = 2.5;
   given.length_weight_per_m = 0.08;
   given.reference_speed_m_s = 1.25;
   given.course_change_m = 0.5;
-  given.reverse_length_factor = 2.0;
   const auto car = path_weight_of(Car::create({}).value(), given);
   ASSERT_TRUE(car.ok()) << car.error().message;
   EXPECT_EQ(car->sensing_radius_m, 2.5);
   EXPECT_EQ(car->length_weight_per_m, 0.08);
   EXPECT_EQ(car->reference_speed_m_s, 1.25);
   EXPECT_EQ(car->course_change_m, 0.5);
-  EXPECT_EQ(car->reverse_length_factor, 2.0);
 
   // 0 turns dd-accel's duration and course off: the paper's weight.
   given.reference_speed_m_s = 0.0;

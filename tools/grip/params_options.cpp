@@ -183,7 +183,6 @@ rt::dds::PlannerParticipantConfig planner_participant_config(const params::GripP
   c.length_weight_per_m = p.exploration.length_weight_per_m;
   c.reference_speed_m_s = p.exploration.reference_speed_m_s;
   c.course_change_m = p.exploration.course_change_m;
-  c.reverse_length_factor = p.exploration.reverse_length_factor;
   c.frontier = p.exploration.frontier;
   c.frontier_give_up_s = p.exploration.give_up_s;
   c.frontier_give_up_reached_s = p.exploration.give_up_reached_s;

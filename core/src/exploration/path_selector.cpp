@@ -26,9 +26,6 @@ Status PathSelectionConfig::validate() const {
   if (!(std::isfinite(course_change_m) && course_change_m >= 0.0)) {
     return bad("course_change_m", course_change_m, "finite and >= 0");
   }
-  if (!(std::isfinite(reverse_length_factor) && reverse_length_factor >= 1.0)) {
-    return bad("reverse_length_factor", reverse_length_factor, "finite and >= 1");
-  }
   if (!(std::isfinite(sample_step_s) && sample_step_s > 0.0)) {
     return bad("sample_step_s", sample_step_s, "finite and > 0");
   }
@@ -197,10 +194,7 @@ PathChoice PathSelector::select(const Planner<V>& planner, const TargetSight& si
       const auto& q = tree.edge_state(e, static_cast<std::uint16_t>(k));
       const double x = state_x(q);
       const double y = state_y(q);
-      const double chord = std::sqrt((x - px) * (x - px) + (y - py) * (y - py));
-      const double theta = state_theta(q);
-      const bool reversing = (x - px) * std::cos(theta) + (y - py) * std::sin(theta) < 0.0;
-      length += reversing ? config_.reverse_length_factor * chord : chord;
+      length += std::sqrt((x - px) * (x - px) + (y - py) * (y - py));
       px = x;
       py = y;
       fold(d, d_sum, unseen, x, y);

@@ -70,7 +70,6 @@ Status PlanningSide<V>::prepare(const VehicleSample& state, bool explore) {
   exploration.length_weight_per_m = config_.length_weight_per_m;
   exploration.reference_speed_m_s = config_.reference_speed_m_s;
   exploration.course_change_m = config_.course_change_m;
-  exploration.reverse_length_factor = config_.reverse_length_factor;
   auto driver = ExplorationDriver<V>::create(session.vehicle(), session.grid(), exploration,
                                              session.sizing().planner);
   if (!driver) return driver.error();

@@ -74,8 +74,7 @@ class PathSelectorTest : public ::testing::Test {
     return grid.to_cell(x, y, cx, cy) ? sight->seen_from(grid.index(cx, cy)) : 0U;
   }
   // Section 3's weight of the trajectory to s, computed from scratch over its recorded states.
-  // Metres in reverse (against the heading at the chord's end) count reverse_factor times.
-  Reference reference(TreeState s, bool by_sight, double reverse_factor = 1.0) const {
+  Reference reference(TreeState s, bool by_sight) const {
     const std::span<const std::uint32_t> targets = sight->target_cells();
     std::vector<double> d(targets.size(), config.sensing_radius_m);
     Reference r;
@@ -83,10 +82,7 @@ class PathSelectorTest : public ::testing::Test {
     double px = 0.0;
     double py = 0.0;
     planner->visit_path(s, [&](const DdVelocity::State& q) {
-      if (!first) {
-        const bool reversing = (q[0] - px) * std::cos(q[2]) + (q[1] - py) * std::sin(q[2]) < 0.0;
-        r.length_m += (reversing ? reverse_factor : 1.0) * std::hypot(q[0] - px, q[1] - py);
-      }
+      if (!first) r.length_m += std::hypot(q[0] - px, q[1] - py);
       first = false;
       px = q[0];
       py = q[1];
@@ -250,35 +246,6 @@ TEST_F(PathSelectorTest, AReferenceSpeedWeighsTheDurationInsteadOfTheLength) {
   EXPECT_FALSE(by_length.edge == choice.state.edge && by_length.index == choice.state.index);
 }
 
-// With a reverse factor, each metre the trajectory drives in reverse counts that many times in
-// l(tr): the choice is the minimum of that weight, and the factor changes it.
-TEST_F(PathSelectorTest, MetresInReverseCountTheReverseFactorTimesInTheLength) {
-  grow(2.0, 1.0, 1500);
-  const std::uint32_t min_step = 20;
-  PathSelectionConfig reverse_costs = config;
-  reverse_costs.reverse_length_factor = 6.0;
-  auto by_direction = PathSelector::create(80, 60, 0.1, 4000, reverse_costs).value();
-  auto direction_sight = by_direction.create_sight().value();
-  direction_sight.set_target(grid, frontiers->target_cells());
-  const PathChoice choice = by_direction.select(*planner, direction_sight, min_step);
-  ASSERT_NE(choice.state.edge, kNoHandle);
-  double minimum = std::numeric_limits<double>::infinity();
-  int with_reverse = 0;
-  for_each_state([&](TreeState s, std::uint32_t step) {
-    if (step < min_step) return;
-    const Reference r = reference(s, true, reverse_costs.reverse_length_factor);
-    minimum = std::min(minimum, r.weight);
-    with_reverse += r.length_m > reference(s, true).length_m + 1e-9 ? 1 : 0;
-  });
-  ASSERT_GT(with_reverse, 0);  // the tree backs up somewhere: the factor has metres to weigh
-  EXPECT_NEAR(choice.weight, minimum, 1e-5 * minimum);
-  EXPECT_NEAR(choice.length_m,
-              reference(choice.state, true, reverse_costs.reverse_length_factor).length_m, 1e-4);
-  // The length alone chooses another trajectory on this tree: the direction decided.
-  const TreeState by_length = selector->select(*planner, *sight, min_step).state;
-  EXPECT_FALSE(by_length.edge == choice.state.edge && by_length.index == choice.state.index);
-}
-
 // Whether the trajectory to s keeps the course that ends at c: s lies on the path to c, or c on
 // the path to s (both resolved states).
 bool keeps_course(const Tree<DdVelocity::State>& tree, TreeState s, TreeState c) {
@@ -436,12 +403,6 @@ TEST(PathSelectionConfigTest, BadValuesAreRefusedByName) {
   const auto negative = PathSelector::create(10, 10, 0.1, 100, config);
   ASSERT_FALSE(negative.ok());
   EXPECT_NE(negative.error().message.find("course_change_m"), std::string::npos);
-  config = PathSelectionConfig{};
-  config.reverse_length_factor = 0.5;  // reversing cannot be cheaper than driving forward
-  const auto cheaper = PathSelector::create(10, 10, 0.1, 100, config);
-  ASSERT_FALSE(cheaper.ok());
-  EXPECT_NE(cheaper.error().message.find("reverse_length_factor must be finite and >= 1"),
-            std::string::npos);
 }
 
 }  // namespace

@@ -69,7 +69,6 @@ GripParams all_changed(VehicleKind kind) {
   p.exploration.length_weight_per_m = 1.0 / 30.0;
   p.exploration.reference_speed_m_s = 4.0 / 3.0;
   p.exploration.course_change_m = 0.1 + 0.2;
-  p.exploration.reverse_length_factor = 2.5;
   p.exploration.frontier.approach_range_m = 0.61;
   p.exploration.frontier.size_weight = 0.25;
   p.exploration.frontier.size_cap_m = 3.5;
@@ -134,7 +133,7 @@ TEST(ParamsYaml, DerivedValuesAreWrittenAsAutoAndANumberForThemIsTakenAsGiven) {
   for (const char* line :
        {"  margin_s: auto", "  max_edges: auto", "  range_m: auto", "  rays: auto",
         "  sensing_radius_m: auto", "    reference_speed_m_s: auto", "    course_change_m: auto",
-        "    reverse_length_factor: auto", "  cpu: auto"}) {
+        "  cpu: auto"}) {
     EXPECT_NE(yaml.find(std::string(line) + "  #"), std::string::npos) << line;
   }
 
@@ -142,8 +141,7 @@ TEST(ParamsYaml, DerivedValuesAreWrittenAsAutoAndANumberForThemIsTakenAsGiven) {
       "vehicle: {model: car}\n"
       "planner: {margin_s: 0.004, max_edges: 5000}\n"
       "sensor: {range_m: 0, rays: 720}\n"
-      "exploration: {path_weight: {reference_speed_m_s: 0, course_change_m: 1.5, "
-      "reverse_length_factor: 3}}\n"
+      "exploration: {path_weight: {reference_speed_m_s: 0, course_change_m: 1.5}}\n"
       "runtime: {cpu: -1}\n",
       "numbers.yaml");
   ASSERT_TRUE(read.ok()) << read.error().message;
@@ -153,7 +151,6 @@ TEST(ParamsYaml, DerivedValuesAreWrittenAsAutoAndANumberForThemIsTakenAsGiven) {
   EXPECT_EQ(read->sensor.rays, 720U);
   EXPECT_EQ(read->exploration.reference_speed_m_s, 0.0);
   EXPECT_EQ(read->exploration.course_change_m, 1.5);
-  EXPECT_EQ(read->exploration.reverse_length_factor, 3.0);
   EXPECT_EQ(read->runtime.cpu, -1);
 }
 
@@ -233,10 +230,6 @@ TEST(ParamsValidate, ASetBuiltInCodeIsRefusedByTheKeyOfItsFirstValueOutOfRange) 
   EXPECT_EQ(
       message_for(p),
       "exploration.path_weight.reference_speed_m_s must be auto or finite and >= 0 (got -0.5)");
-  p = default_params(VehicleKind::kCar);
-  p.exploration.reverse_length_factor = 0.5;
-  EXPECT_EQ(message_for(p),
-            "exploration.path_weight.reverse_length_factor must be auto or finite and >= 1 (got 0.5)");
   p = default_params(VehicleKind::kDdAcceleration);
   p.exploration.length_weight_per_m = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(message_for(p).starts_with("exploration.path_weight.length_weight_per_m must be"))

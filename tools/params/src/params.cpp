@@ -91,9 +91,6 @@ void check_exploration(const SensorParams& s, const ExplorationParams& e, const 
   r.require(auto_or_non_negative(e.reference_speed_m_s), e.reference_speed_m_s,
             "auto or finite and >= 0");
   r.require(auto_or_non_negative(e.course_change_m), e.course_change_m, "auto or finite and >= 0");
-  r.require(e.reverse_length_factor == kPathWeightOfVehicle ||
-                (std::isfinite(e.reverse_length_factor) && e.reverse_length_factor >= 1.0),
-            e.reverse_length_factor, "auto or finite and >= 1");
   // The map's resolution is not known here: FrontierMap::create checks the approach range
   // against clearance_m plus a cell's diagonal once it is; this is that check for a cell of 0.
   // Frontiers are approached from the cells rho traverses (rt/exploration_driver.hpp).

@@ -22,16 +22,9 @@ struct PathSelectionConfig {
   // equal weight from one cycle to the next, the vehicle steering toward each in turn. 0: the
   // paper's choice, made afresh every cycle.
   double course_change_m = 0.0;
-  // Each metre driven in reverse (the reference point moving against the heading) counts as
-  // this many in the length l(tr); 1: the paper's length, blind to direction. A car backs up at
-  // a sixth of its top speed, and with the length alone it backs toward a target behind it
-  // rather than turning toward it, slower for the same metres (Hybrid A* penalises reversing
-  // for the same reason). With a reference speed l is the duration, which counts a slow
-  // reverse as what it takes, and this factor plays no part.
-  double reverse_length_factor = 1.0;
 
   // Errors name the bad value: any value not finite or not > 0 (lambda, the reference speed
-  // and the course change may be 0), a reverse length factor below 1.
+  // and the course change may be 0).
   Status validate() const;
 };
 

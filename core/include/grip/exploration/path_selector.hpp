@@ -4,9 +4,8 @@
 //   d(tr, c) = rho_A*(q, c) for the state q of tr nearest to c among those that see c, else
 //              d_max + rho(end of tr, F)
 //   d(tr)    = sum over c of d(tr, c)
-//   w(tr)    = d(tr) * exp(lambda * l(tr)),  l(tr) the length of tr, its metres in reverse
-//              counted PathSelectionConfig::reverse_length_factor times (or its duration at a
-//              reference speed: reference_speed_m_s),
+//   w(tr)    = d(tr) * exp(lambda * l(tr)),  l(tr) the length of tr (or its duration at a
+//              reference speed: PathSelectionConfig::reference_speed_m_s),
 // and the selector returns the minimum-weight state at least T (min_step) from the root. The
 // paper has d_max alone for an unseen cell; then a trajectory that sees a few cells loses to
 // one that barely moves (its length costs more than the cells gain), and the robot stalls where
@@ -34,8 +33,7 @@
 //  - Where q sees c, rho_A*(q, c) is the straight distance: the segment between them is free,
 //    so it is the shortest path.
 //  - d and l are taken over the states sampled every sample_step_s along each edge (and its
-//    last state), the way Eq. 1 samples rho; l sums the chords between them, a chord in reverse
-//    where it runs against the heading at its end. One pass over the
+//    last state), the way Eq. 1 samples rho; l sums the chords between them. One pass over the
 //    tree in pre-order computes every edge's d(tr, c) vector from its parent's (elementwise
 //    minimum), so each sampled state costs O(1) when it sees nothing and O(targets) when it
 //    does. The pass runs when the plan is chosen rather than while the tree grows: the planner

@@ -86,7 +86,6 @@ struct PlannerParticipantConfig {
   double length_weight_per_m = PathSelectionConfig{}.length_weight_per_m;
   double reference_speed_m_s = kPathWeightOfVehicle;
   double course_change_m = kPathWeightOfVehicle;
-  double reverse_length_factor = kPathWeightOfVehicle;
   // A frontier target the vehicle gets no closer to (by rho_A*, 0.5 m) for this long, in
   // vehicle time, is given up (FrontierMap::give_up) and the next one chosen.
   double frontier_give_up_s = 60.0;
