@@ -41,7 +41,7 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
        {"result", "coverage", "collisions", "cycles", "deadline_misses", "sim_time_s", "distance_m",
         "mean_speed_fraction", "plans_received", "contingency_stops", "speed_profile",
         "retraced_fraction", "braking_bound_fraction", "turning_bound_fraction",
-        "without_plan_fraction"}) {
+        "without_plan_fraction", "reversing_fraction"}) {
     ASSERT_TRUE(r.contains(key)) << key << "\n" << output;
   }
   const std::string result = r.at("result");
@@ -64,6 +64,8 @@ void expect_a_sane_run(const nlohmann::json& r, const std::string& output) {
             r.at("braking_bound_fraction").get<double>());
   EXPECT_GE(r.at("without_plan_fraction").get<double>(), 0.0);
   EXPECT_LT(r.at("without_plan_fraction").get<double>(), 1.0);
+  EXPECT_GE(r.at("reversing_fraction").get<double>(), 0.0);
+  EXPECT_LT(r.at("reversing_fraction").get<double>(), 1.0);
   // How much of the time the vehicle went faster than 50% and 80% of its maximum, per sample.
   const double max_speed = r.at("max_speed_m_s").get<double>();
   ASSERT_GT(max_speed, 0.0);

@@ -131,7 +131,7 @@ struct Row {
   std::uint64_t collisions = 0;
   double min_coverage = 1.0;
   std::vector<double> coverage, sim_time, wall_time, speed, bound, turning_bound, retraced,
-      first_collision;
+      reversing, first_collision;
   bool target_met(bool no_safety) const {
     if (no_safety) return collided > 0;  // the ablation shows why the safety step exists
     // The target; whether each run also ended by itself is the `complete` column.
@@ -175,6 +175,7 @@ std::vector<Row> tabulate(const std::vector<Run>& runs) {
     row->bound.push_back(j.value("braking_bound_fraction", 0.0));
     row->turning_bound.push_back(j.value("turning_bound_fraction", 0.0));
     row->retraced.push_back(j.value("retraced_fraction", 0.0));
+    row->reversing.push_back(j.value("reversing_fraction", 0.0));
   }
   return rows;
 }
@@ -336,6 +337,7 @@ int run_bench(const BenchExploreOptions& o) {
                        {"median_braking_bound_fraction", median(r.bound)},
                        {"median_turning_bound_fraction", median(r.turning_bound)},
                        {"median_retraced_fraction", median(r.retraced)},
+                       {"median_reversing_fraction", median(r.reversing)},
                        {"target_met", r.target_met(o.no_safety)}});
     }
     j["table"] = table;

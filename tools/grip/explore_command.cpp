@@ -128,6 +128,7 @@ nlohmann::json report_json(const ExploreOptions& o, const params::GripParams& p,
   j["braking_bound_fraction"] = r.braking_bound_fraction;
   j["turning_bound_fraction"] = r.turning_bound_fraction;
   j["without_plan_fraction"] = r.without_plan_fraction;
+  j["reversing_fraction"] = r.reversing_fraction;
   j["plans_received"] = r.plans_received;
   j["plans_rejected"] = r.plans_rejected;
   j["contingency_stops"] = r.contingency_stops;
@@ -247,10 +248,11 @@ int finish(const ExploreOptions& o, const params::GripParams& p, const World& wo
             << " of it retraced), mean speed " << std::setprecision(2) << r.mean_speed_fraction
             << " of top (braking within the sensed region allows " << r.braking_bound_fraction
             << ", and within its turns " << r.turning_bound_fraction << "; without a plan "
-            << r.without_plan_fraction << " of the time)\n  planner cycles " << r.cycles
-            << ", deadline misses " << r.deadline_misses << ", plans " << r.plans_received
-            << " (rejected " << r.plans_rejected << ", " << r.empty_plans << " empty, "
-            << r.start_mismatches << " refused: not starting where the vehicle was"
+            << r.without_plan_fraction << " of the time, backing up " << r.reversing_fraction
+            << ")\n  planner cycles " << r.cycles << ", deadline misses " << r.deadline_misses
+            << ", plans " << r.plans_received << " (rejected " << r.plans_rejected << ", "
+            << r.empty_plans << " empty, " << r.start_mismatches
+            << " refused: not starting where the vehicle was"
             << (r.plans_dropped > 0 ? ", " + std::to_string(r.plans_dropped) + " dropped on purpose"
                                     : "")
             << "), contingency stops " << r.contingency_stops << "\n";

@@ -16,6 +16,7 @@
 #include "grip/sim/plan_executor.hpp"
 #include "grip/sim/range_sensor.hpp"
 #include "grip/sim/retraced_distance.hpp"
+#include "grip/sim/reversing.hpp"
 #include "grip/sim/turning_bound.hpp"
 #include "grip/vehicles/vehicle_params.hpp"
 
@@ -357,6 +358,9 @@ Result<SimRunReport> run_with(const V& vehicle, const SimRunConfig& config,
     report.without_plan_fraction =
         static_cast<double>(ticks_without_plan) / static_cast<double>(stats.speed_ticks);
   }
+  auto reversing = reversing_fraction(report.trajectory, headings, stats.speed_ticks);
+  if (!reversing) return reversing.error();
+  report.reversing_fraction = *reversing;
   auto bounds = speed_bounds_of(vehicle, report.trajectory, headings, sensed, sensed_ticks, dt);
   if (!bounds) return bounds.error();
   // Over the ticks since the first plan, as the mean speed.

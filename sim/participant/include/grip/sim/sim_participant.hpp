@@ -119,6 +119,8 @@ struct SimRunReport {
   double braking_bound_fraction = 0.0;
   double turning_bound_fraction = 0.0;
   double without_plan_fraction = 0.0;
+  // Since the first plan, the share of ticks the vehicle backed up (sim/reversing.hpp).
+  double reversing_fraction = 0.0;
   std::uint64_t plans_received = 0;
   std::uint64_t plans_rejected = 0;
   std::uint64_t plans_dropped = 0;  // lost on purpose (SimRunConfig::drop_plans)
