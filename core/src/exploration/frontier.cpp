@@ -24,7 +24,6 @@ constexpr std::array<NamedValue<ExplorationStatus>, 3> kExplorationStatusNames{{
 // label_ of a frontier cell not yet grouped.
 constexpr std::uint32_t kUnlabelled = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t kUnreachable = DistanceField::kUnreachable;
-constexpr double kTourKeepM = 2.0;
 
 // The next bound of a wavefront run in steps: twice the last, saturating at "to the end".
 std::uint32_t next_limit(std::uint32_t limit) {
@@ -75,9 +74,6 @@ Status FrontierConfig::validate(double resolution_m) const {
     return bad("search_step_m", search_step_m, "finite and >= 0");
   }
   if (min_group_cells == 0) return bad("min_group_cells", 0.0, ">= 1");
-  if (tour_groups > kMaxTourGroups) {
-    return bad("tour_groups", tour_groups, "at most " + std::to_string(kMaxTourGroups));
-  }
   return Ok{};
 }
 
@@ -112,8 +108,7 @@ FrontierMap::FrontierMap(int width_cells, int height_cells, double resolution_m,
       seeds_(square_cells(approach_reach(config, resolution_m)) + 1),
       approach_(field_.cell_count()),
       stamp_(field_.cell_count()),
-      given_up_(field_.cell_count()),
-      candidates_(groups_.capacity()) {
+      given_up_(field_.cell_count()) {
   reach_ = approach_reach(config, resolution_m);
   const double reach_cells = config.approach_range_m / resolution_m;
   window_costs_.assign(square_cells(reach_), kUnreachable);
@@ -240,9 +235,6 @@ void FrontierMap::choose_target(const OccupancyGrid& grid, const ChassisCells& c
   const int robot_cx = static_cast<int>(seeds_[0] % w);
   const int robot_cy = static_cast<int>(seeds_[0] / w);
   double best = std::numeric_limits<double>::infinity();
-  candidates_.clear();
-  // A tour needs its groups measured: the wavefront goes on until it has as many.
-  const std::size_t tour_size = config_.tour_groups > 1 ? config_.tour_groups : 1;
   for (std::uint32_t limit = step;; limit = next_limit(limit)) {
     const bool complete = field_.settle(limit);
     const std::uint32_t settled = field_.settled_limit();
@@ -268,97 +260,13 @@ void FrontierMap::choose_target(const OccupancyGrid& grid, const ChassisCells& c
       }
       const double size_m = group.size * resolution_;
       group.score_m = group.rho_m + config_.size_weight * std::min(size_m, config_.size_cap_m);
-      GRIP_ASSERT(candidates_.push_back(g));  // each group once
       if (group.score_m < best || (group.score_m == best && g < target_)) {
         best = group.score_m;
         target_ = g;
       }
     }
-    if (complete || (best <= settled * metres_per_unit && candidates_.size() >= tour_size)) break;
+    if (complete || best <= settled * metres_per_unit) return;
   }
-  if (tour_size > 1 && candidates_.size() > 1) target_ = first_of_tour();
-  last_target_cell_ = target_ == kNoGroup ? FrontierGroup::kNoCell : groups_[target_].nearest_cell;
-}
-
-std::uint32_t FrontierMap::first_of_tour() noexcept {
-  // The groups nearest by rho (every group with less rho was measured before the search ended).
-  const auto nearer = [this](std::uint32_t a, std::uint32_t b) {
-    return groups_[a].rho_m < groups_[b].rho_m || (groups_[a].rho_m == groups_[b].rho_m && a < b);
-  };
-  const auto n = static_cast<std::uint32_t>(
-      std::min<std::size_t>(candidates_.size(), config_.tour_groups));
-  std::partial_sort(candidates_.begin(), candidates_.begin() + n, candidates_.end(), nearer);
-  std::copy(candidates_.begin(), candidates_.begin() + n, tour_.begin());
-  std::array<float, FrontierConfig::kMaxTourGroups * FrontierConfig::kMaxTourGroups> leg{};
-  for (std::uint32_t i = 0; i < n; ++i) {
-    for (std::uint32_t j = i + 1; j < n; ++j) {
-      leg[i * n + j] = leg[j * n + i] =
-          static_cast<float>(tour_leg_m(groups_[tour_[i]], groups_[tour_[j]]));
-    }
-  }
-  // Held-Karp from the full set down: rest(visited, last) = the least length of a path from
-  // `last` through every group not yet visited.
-  const std::uint32_t all = (1U << n) - 1;
-  const auto rest = [&](std::uint32_t visited, std::uint32_t last) -> float& {
-    return tour_rest_m_[visited * FrontierConfig::kMaxTourGroups + last];
-  };
-  for (std::uint32_t visited = all;; --visited) {
-    for (std::uint32_t last = 0; last < n; ++last) {
-      if (((visited >> last) & 1U) == 0) continue;
-      float least = visited == all ? 0.0F : std::numeric_limits<float>::infinity();
-      for (std::uint32_t next = 0; next < n; ++next) {
-        if (((visited >> next) & 1U) != 0) continue;
-        least = std::min(least, leg[last * n + next] + rest(visited | (1U << next), next));
-      }
-      rest(visited, last) = least;
-    }
-    if (visited == 1) break;
-  }
-  std::uint32_t first = 0;
-  double shortest = std::numeric_limits<double>::infinity();
-  std::uint32_t kept = n;
-  const std::uint32_t last_group =
-      last_target_cell_ != FrontierGroup::kNoCell && is_frontier(last_target_cell_)
-          ? label_[last_target_cell_]
-          : kNoGroup;
-  double kept_length = 0.0;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const double length = groups_[tour_[i]].rho_m + static_cast<double>(rest(1U << i, i));
-    if (length < shortest) {
-      shortest = length;
-      first = i;
-    }
-    if (tour_[i] == last_group) {
-      kept = i;
-      kept_length = length;
-    }
-  }
-  // The last target stays first unless another's tour is shorter by kTourKeepM: without it the
-  // first group flips with the vehicle's every move between two near-equal tours.
-  if (kept < n && kept_length <= shortest + kTourKeepM) first = kept;
-  return tour_[first];
-}
-
-double FrontierMap::tour_leg_m(const FrontierGroup& a, const FrontierGroup& b) const noexcept {
-  // Down both shortest paths, the costlier end first, until they meet or both reach a seed.
-  std::uint32_t p = a.approach_cell;
-  std::uint32_t q = b.approach_cell;
-  std::uint32_t meeting = 0;
-  while (true) {
-    const std::uint32_t cp = field_.cost_at(p);
-    const std::uint32_t cq = field_.cost_at(q);
-    if (p == q) {
-      meeting = cp;
-      break;
-    }
-    if (cp == 0 && cq == 0) break;
-    std::uint32_t& higher = cp >= cq ? p : q;
-    const std::uint32_t down = field_.descend(higher, 1);
-    if (down == higher) break;  // a local minimum off the seeds: no meeting known
-    higher = down;
-  }
-  const double metres_per_unit = resolution_ / DistanceField::kCostUnitsPerCell;
-  return a.rho_m + b.rho_m - 2.0 * meeting * metres_per_unit;
 }
 
 void FrontierMap::detect(const OccupancyGrid& grid, const CellBox& box) noexcept {
@@ -517,7 +425,6 @@ bool FrontierMap::measure_group(const OccupancyGrid& grid, const ChassisCells& c
   const auto w = static_cast<std::uint32_t>(width_);
   std::uint32_t best = kUnreachable;
   std::uint32_t nearest = FrontierGroup::kNoCell;
-  std::uint32_t from = FrontierGroup::kNoCell;
   for (std::uint32_t i = group.first; i < group.first + group.size; ++i) {
     const std::uint32_t c = cells_[i];
     const int cx = static_cast<int>(c % w);
@@ -531,7 +438,6 @@ bool FrontierMap::measure_group(const OccupancyGrid& grid, const ChassisCells& c
           if (cost >= best || !detail::in_sight(grid, x, y, cx, cy)) return;
           best = cost;
           nearest = c;
-          from = grid.index(x, y);
         });
   }
   // Decided when no cell beyond the settled ones could give less: they cost more than `settled`
@@ -540,7 +446,6 @@ bool FrontierMap::measure_group(const OccupancyGrid& grid, const ChassisCells& c
   group.rho_m = best == kUnreachable ? std::numeric_limits<double>::infinity()
                                      : best * (resolution_ / DistanceField::kCostUnitsPerCell);
   group.nearest_cell = nearest;
-  group.approach_cell = from;
   return true;
 }
 

@@ -469,37 +469,6 @@ TEST(FrontierSearch, ANearTargetLeavesTheFarKnownSpaceUnsearched) {
   EXPECT_TRUE(std::ranges::equal(stepped.approach_cells(), exact.approach_cells()));
 }
 
-// A corridor 1 m wide and 20 m long with unknown ground at its west end (group A) and two
-// unknown pockets in its north wall, 2 m east of the robot (B) and 10 m east (C).
-class FrontierTourTest : public FrontierTargetTest {
- protected:
-  void corridor() {
-    make_grid(200, 60, Cell::kObstacle);
-    walled_room(0.0, 2.0, 20.0, 3.6);
-    unknown_block(0.3, 2.3, 0.2, 1.0);  // A: 10 frontier cells across the west end
-    unknown_block(7.0, 3.3, 0.2, 0.3);  // B: 2 cells in the north wall
-    unknown_block(15.0, 3.3, 0.2, 0.3);  // C
-  }
-  double target_x() const { return grid->cell_center_x(grid->cell_x(frontiers->target_cells()[0])); }
-};
-
-TEST_F(FrontierTourTest, TheTourTakesTheDeadEndBehindBeforeHeadingOn) {
-  corridor();
-  ASSERT_EQ(update(5.0, 2.8), ExplorationStatus::kTarget);
-  ASSERT_EQ(frontiers->groups().size(), 3U);
-  EXPECT_NEAR(target_x(), 7.1, 0.2);  // by score: B, the nearest
-  // A, B, C: about 4.5 + 6.5 + 8 m; B first, A left behind: 2 + 6.5 + 14.5 m.
-  config.tour_groups = 3;
-  frontiers.reset();
-  ASSERT_EQ(update(5.0, 2.8), ExplorationStatus::kTarget);
-  EXPECT_LT(target_x(), 1.0);
-  // Without C, going on east saves nothing: the nearest first.
-  grid->fill_rect(14.9, 3.25, 15.3, 3.6, Cell::kObstacle);
-  frontiers.reset();
-  ASSERT_EQ(update(5.0, 2.8), ExplorationStatus::kTarget);
-  EXPECT_NEAR(target_x(), 7.1, 0.2);
-}
-
 TEST(FrontierConfigTest, BadValuesAreRefusedByName) {
   FrontierConfig config;
   config.approach_range_m = 0.3;  // not beyond the clearance
@@ -522,11 +491,6 @@ TEST(FrontierConfigTest, BadValuesAreRefusedByName) {
   const auto negative_step = FrontierMap::create(10, 10, 0.1, config);
   ASSERT_FALSE(negative_step.ok());
   EXPECT_NE(negative_step.error().message.find("search_step_m"), std::string::npos);
-  config = FrontierConfig{};
-  config.tour_groups = FrontierConfig::kMaxTourGroups + 1;
-  const auto long_tour = FrontierMap::create(10, 10, 0.1, config);
-  ASSERT_FALSE(long_tour.ok());
-  EXPECT_NE(long_tour.error().message.find("tour_groups"), std::string::npos);
   EXPECT_FALSE(FrontierMap::create(0, 10, 0.1, FrontierConfig{}).ok());
 }
 

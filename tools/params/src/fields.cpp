@@ -156,8 +156,6 @@ constexpr auto kExploration = std::to_array<Field>({
      "longer frontiers weigh the same"},
     {"frontier.min_group_cells", member<&G::exploration, &Ex::frontier, &Fr::min_group_cells>,
      "smaller groups are ignored"},
-    {"frontier.tour_groups", member<&G::exploration, &Ex::frontier, &Fr::tour_groups>,
-     "2 to 8: the target is the first group of the shortest tour through this many nearest; 0: the score"},
     {"frontier.give_up_radius_m", member<&G::exploration, &Ex::frontier, &Fr::give_up_radius_m>,
      "a group given up sets aside the frontier cells this close to it"},
     {"give_up_s", member<&G::exploration, &Ex::give_up_s>,

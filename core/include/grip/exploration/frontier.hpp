@@ -20,17 +20,10 @@
 //  - The robot's wavefront starts from its own cell and from the chassis cells in sight within
 //    approach_range_m of it (all at distance 0), so that a robot standing closer to a wall than
 //    clearance_m (where the wavefront could not leave its cell) still reaches the open space.
-//  - A tour's leg between two groups (FrontierConfig::tour_groups) is the way between their
-//    approach cells along the robot's wavefront: down each one's shortest path toward the robot
-//    to where the two paths meet, rho_a + rho_b - 2 rho(meeting cell). Exact where the known
-//    space branches like a tree (corridors, rooms off a hall); in open space it can be longer than
-//    the straight way, never shorter than the true way. It costs two walks, not a wavefront per
-//    group.
 //
 // Capacity is fixed by create() (every buffer sized from the grid); update() and the accessors
 // never allocate and never throw.
 
-#include <array>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -85,18 +78,10 @@ struct FrontierConfig {
   // [m] give_up() sets aside the frontier cells within this distance of a group's cells: the
   // group, and what it becomes while the map around it does not change, is no longer a target.
   double give_up_radius_m = 1.0;
-  // With 2 or more, the target is the first group of the shortest open tour from the robot
-  // through the tour_groups groups nearest by rho (fewer when fewer are left), instead of the
-  // least score: a group the tour passes on its way is taken now rather than left behind for a
-  // trip back (FUEL's global tour, Zhou et al. 2021, over frontier groups). The legs between
-  // groups run along the robot's wavefront (FrontierMap's file comment); 0 or 1: the score alone.
-  std::uint32_t tour_groups = 0;
-  static constexpr std::uint32_t kMaxTourGroups = 8;
 
   // Errors name the bad value: clearance_m < 0, rho_cell_m < 0, approach_range_m not >
   // clearance_m + one cell diagonal, size_weight < 0, size_cap_m < 0, give_up_radius_m < 0,
-  // search_step_m < 0 (or any of them not finite), min_group_cells 0, tour_groups more than
-  // kMaxTourGroups.
+  // search_step_m < 0 (or any of them not finite), min_group_cells 0.
   Status validate(double resolution_m) const;
   bool operator==(const FrontierConfig&) const = default;
 };
@@ -117,7 +102,6 @@ struct FrontierGroup {
   std::uint32_t size = 0;   // [cells]
   double rho_m = std::numeric_limits<double>::infinity();    // +inf: not reachable
   std::uint32_t nearest_cell = kNoCell;                      // the cell that gives rho_m
-  std::uint32_t approach_cell = kNoCell;  // the chassis cell it is approached from, for rho_m
   double score_m = std::numeric_limits<double>::infinity();  // see FrontierConfig; +inf: ignored
   // Whether the robot's wavefront got far enough to measure it (rho_m, nearest_cell, score_m):
   // it stops once no group beyond could beat the target (FrontierConfig::search_step_m).
@@ -225,10 +209,6 @@ class FrontierMap {
   // to cost `settled`; false (nothing set) when cells beyond could still give a smaller rho.
   bool measure_group(const OccupancyGrid& grid, const ChassisCells& chassis, FrontierGroup& group,
                      std::uint32_t settled) noexcept;
-  // The first of the shortest open tour from the robot through tour_ (the file comment).
-  std::uint32_t first_of_tour() noexcept;
-  // [m] The leg between two groups of the tour (the file comment).
-  double tour_leg_m(const FrontierGroup& a, const FrontierGroup& b) const noexcept;
   void collect_approach_cells(const OccupancyGrid& grid, const ChassisCells& chassis,
                               const FrontierGroup& group) noexcept;
   // Whether the approach may start at cell c: a chassis cell, or the robot's own (a seed).
@@ -275,12 +255,6 @@ class FrontierMap {
   BoundedVector<std::uint32_t> approach_;  // the target's approach cells
   BoundedVector<std::uint32_t> stamp_;     // per cell: approach_ membership, by generation
   BoundedVector<std::uint8_t> given_up_;   // per cell: 1 within give_up_radius_m of one given up
-  BoundedVector<std::uint32_t> candidates_;  // groups that may be the target, of choose_target()
-  // The tour's groups and, per set of them visited and the last, the least length still to go.
-  static constexpr std::uint32_t kTourSets = 1U << FrontierConfig::kMaxTourGroups;
-  std::array<std::uint32_t, FrontierConfig::kMaxTourGroups> tour_{};
-  std::uint32_t last_target_cell_ = FrontierGroup::kNoCell;
-  std::array<float, kTourSets * FrontierConfig::kMaxTourGroups> tour_rest_m_{};
   std::uint32_t given_up_groups_ = 0;
   std::uint32_t unreachable_groups_ = 0;
   std::uint32_t generation_ = 0;
