@@ -31,10 +31,11 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
   }
   auto target = ExplorationTarget::create(grid, target_config);
   if (!target) return target.error();
+  const PathWeightSettings& weight = config.path_weight;
   PathSelectionConfig selection;
-  selection.length_weight_per_m = config.length_weight_per_m;
-  selection.reference_speed_m_s = config.reference_speed_m_s;
-  selection.course_change_m = config.course_change_m;
+  selection.length_weight_per_m = weight.length_weight_per_m;
+  selection.reference_speed_m_s = weight.reference_speed_m_s;
+  selection.course_change_m = weight.course_change_m;
   bool turns_in_place_at_bounded_acceleration = false;
   if constexpr (LimitsAcceleration<V>) {
     turns_in_place_at_bounded_acceleration = vehicle.min_turning_radius_m() == 0.0;
@@ -48,7 +49,7 @@ Result<ExplorationDriver<V>> ExplorationDriver<V>::create(const V& vehicle,
     selection.course_change_m = turns_in_place_at_bounded_acceleration ? kCourseChangeM : 0.0;
   }
   selection.sensing_radius_m =
-      config.sensing_radius_m > 0.0 ? config.sensing_radius_m : grid.width_m() / 10.0;
+      weight.sensing_radius_m > 0.0 ? weight.sensing_radius_m : grid.width_m() / 10.0;
   auto selector = PathSelector::create(grid.width(), grid.height(), grid.resolution(),
                                        planner.max_edges, selection);
   if (!selector) return selector.error();

@@ -51,10 +51,10 @@ TEST(ExplorationDriver, LeftToTheVehicleTheWeightIsTheDurationAndTheCourseOnlyFo
 
 TEST(ExplorationDriver, GivenValuesAreTakenAsTheyAreForEveryVehicle) {
   ExplorationDriverConfig given;
-  given.sensing_radius_m = 2.5;
-  given.length_weight_per_m = 0.08;
-  given.reference_speed_m_s = 1.25;
-  given.course_change_m = 0.5;
+  given.path_weight.sensing_radius_m = 2.5;
+  given.path_weight.length_weight_per_m = 0.08;
+  given.path_weight.reference_speed_m_s = 1.25;
+  given.path_weight.course_change_m = 0.5;
   const auto car = path_weight_of(Car::create({}).value(), given);
   ASSERT_TRUE(car.ok()) << car.error().message;
   EXPECT_EQ(car->sensing_radius_m, 2.5);
@@ -63,8 +63,8 @@ TEST(ExplorationDriver, GivenValuesAreTakenAsTheyAreForEveryVehicle) {
   EXPECT_EQ(car->course_change_m, 0.5);
 
   // 0 turns dd-accel's duration and course off: the paper's weight.
-  given.reference_speed_m_s = 0.0;
-  given.course_change_m = 0.0;
+  given.path_weight.reference_speed_m_s = 0.0;
+  given.path_weight.course_change_m = 0.0;
   const auto accel = path_weight_of(DdAcceleration::create({}).value(), given);
   ASSERT_TRUE(accel.ok()) << accel.error().message;
   EXPECT_EQ(accel->reference_speed_m_s, 0.0);
@@ -73,7 +73,7 @@ TEST(ExplorationDriver, GivenValuesAreTakenAsTheyAreForEveryVehicle) {
 
 TEST(ExplorationDriver, ABadPathWeightIsRefusedByName) {
   ExplorationDriverConfig bad;
-  bad.length_weight_per_m = std::numeric_limits<double>::quiet_NaN();
+  bad.path_weight.length_weight_per_m = std::numeric_limits<double>::quiet_NaN();
   const auto weight = path_weight_of(DdVelocity::create({}).value(), bad);
   ASSERT_FALSE(weight.ok());
   EXPECT_NE(weight.error().message.find("length_weight_per_m"), std::string::npos)
@@ -81,7 +81,7 @@ TEST(ExplorationDriver, ABadPathWeightIsRefusedByName) {
 
   // Only kPathWeightOfVehicle stands for the vehicle's value: another negative one is an error.
   ExplorationDriverConfig negative;
-  negative.reference_speed_m_s = -0.5;
+  negative.path_weight.reference_speed_m_s = -0.5;
   const auto refused = path_weight_of(DdAcceleration::create({}).value(), negative);
   ASSERT_FALSE(refused.ok());
   EXPECT_NE(refused.error().message.find("reference_speed_m_s"), std::string::npos)

@@ -89,7 +89,7 @@ ExplorationReport explore(const V& vehicle, const OccupancyGrid& truth, double s
   }
   ExplorationDriverConfig exploration;
   exploration.refresh_cycles = 1;
-  exploration.sensing_radius_m = sensing_m;
+  exploration.path_weight.sensing_radius_m = sensing_m;
   auto driver =
       ExplorationDriver<V>::create(vehicle, map, exploration, session.sizing().planner).value();
 

@@ -178,11 +178,8 @@ rt::dds::PlannerParticipantConfig planner_participant_config(const params::GripP
   c.max_map_cells = p.planner.max_map_cells;
   c.no_safety = !p.planner.safety;
   // The path weight's d_max is what the sensor sees, unless the parameters say otherwise.
-  c.sensing_radius_m =
-      p.exploration.sensing_radius_m > 0.0 ? p.exploration.sensing_radius_m : p.sensor.range_m;
-  c.length_weight_per_m = p.exploration.length_weight_per_m;
-  c.reference_speed_m_s = p.exploration.reference_speed_m_s;
-  c.course_change_m = p.exploration.course_change_m;
+  c.path_weight = p.exploration.path_weight;
+  if (c.path_weight.sensing_radius_m == 0.0) c.path_weight.sensing_radius_m = p.sensor.range_m;
   c.frontier = p.exploration.frontier;
   c.frontier_give_up_s = p.exploration.give_up_s;
   c.frontier_give_up_reached_s = p.exploration.give_up_reached_s;

@@ -66,10 +66,7 @@ Status PlanningSide<V>::prepare(const VehicleSample& state, bool explore) {
   exploration.target.give_up_reached_after_s = config_.frontier_give_up_reached_s;
   exploration.target.rho_margin_m = config_.frontier_rho_margin_m;
   exploration.refresh_cycles = config_.target_refresh_cycles;
-  exploration.sensing_radius_m = config_.sensing_radius_m;
-  exploration.length_weight_per_m = config_.length_weight_per_m;
-  exploration.reference_speed_m_s = config_.reference_speed_m_s;
-  exploration.course_change_m = config_.course_change_m;
+  exploration.path_weight = config_.path_weight;
   auto driver = ExplorationDriver<V>::create(session.vehicle(), session.grid(), exploration,
                                              session.sizing().planner);
   if (!driver) return driver.error();

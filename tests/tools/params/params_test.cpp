@@ -65,10 +65,10 @@ GripParams all_changed(VehicleKind kind) {
   p.planner.max_map_cells = 1U << 20;
   p.planner.safety = false;
   p.sensor = {7.25, 360};
-  p.exploration.sensing_radius_m = 4.4;
-  p.exploration.length_weight_per_m = 1.0 / 30.0;
-  p.exploration.reference_speed_m_s = 4.0 / 3.0;
-  p.exploration.course_change_m = 0.1 + 0.2;
+  p.exploration.path_weight.sensing_radius_m = 4.4;
+  p.exploration.path_weight.length_weight_per_m = 1.0 / 30.0;
+  p.exploration.path_weight.reference_speed_m_s = 4.0 / 3.0;
+  p.exploration.path_weight.course_change_m = 0.1 + 0.2;
   p.exploration.frontier.approach_range_m = 0.61;
   p.exploration.frontier.size_weight = 0.25;
   p.exploration.frontier.size_cap_m = 3.5;
@@ -149,8 +149,8 @@ TEST(ParamsYaml, DerivedValuesAreWrittenAsAutoAndANumberForThemIsTakenAsGiven) {
   EXPECT_EQ(read->planner.max_edges, 5000U);
   EXPECT_EQ(read->sensor.range_m, 0.0);
   EXPECT_EQ(read->sensor.rays, 720U);
-  EXPECT_EQ(read->exploration.reference_speed_m_s, 0.0);
-  EXPECT_EQ(read->exploration.course_change_m, 1.5);
+  EXPECT_EQ(read->exploration.path_weight.reference_speed_m_s, 0.0);
+  EXPECT_EQ(read->exploration.path_weight.course_change_m, 1.5);
   EXPECT_EQ(read->runtime.cpu, -1);
 }
 
@@ -226,12 +226,12 @@ TEST(ParamsValidate, ASetBuiltInCodeIsRefusedByTheKeyOfItsFirstValueOutOfRange) 
   EXPECT_TRUE(message_for(p).starts_with("planner.rho_cell_m must be")) << message_for(p);
 
   p = default_params(VehicleKind::kDdAcceleration);
-  p.exploration.reference_speed_m_s = -0.5;
+  p.exploration.path_weight.reference_speed_m_s = -0.5;
   EXPECT_EQ(
       message_for(p),
       "exploration.path_weight.reference_speed_m_s must be auto or finite and >= 0 (got -0.5)");
   p = default_params(VehicleKind::kDdAcceleration);
-  p.exploration.length_weight_per_m = std::numeric_limits<double>::infinity();
+  p.exploration.path_weight.length_weight_per_m = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(message_for(p).starts_with("exploration.path_weight.length_weight_per_m must be"))
       << message_for(p);
 

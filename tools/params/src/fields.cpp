@@ -135,16 +135,19 @@ constexpr auto kSensor = std::to_array<Field>({
 
 using Ex = ExplorationParams;
 using Fr = FrontierConfig;
+using Pw = PathWeightSettings;
 constexpr auto kExploration = std::to_array<Field>({
-    {"sensing_radius_m", member<&G::exploration, &Ex::sensing_radius_m>,
+    {"sensing_radius_m", member<&G::exploration, &Ex::path_weight, &Pw::sensing_radius_m>,
      "d_max of the path weight; auto: sensor.range_m", 0.0},
     {"path_weight", nullptr, "w = d exp(lambda l) of the trajectory the plan follows"},
-    {"path_weight.length_weight_per_m", member<&G::exploration, &Ex::length_weight_per_m>,
+    {"path_weight.length_weight_per_m",
+     member<&G::exploration, &Ex::path_weight, &Pw::length_weight_per_m>,
      "lambda: l longer by 1 / lambda weighs e times as much"},
-    {"path_weight.reference_speed_m_s", member<&G::exploration, &Ex::reference_speed_m_s>,
+    {"path_weight.reference_speed_m_s",
+     member<&G::exploration, &Ex::path_weight, &Pw::reference_speed_m_s>,
      "l is the duration at this speed; 0: the length; auto: 2/3 of top speed for dd-accel, else 0",
      kPathWeightOfVehicle},
-    {"path_weight.course_change_m", member<&G::exploration, &Ex::course_change_m>,
+    {"path_weight.course_change_m", member<&G::exploration, &Ex::path_weight, &Pw::course_change_m>,
      "leaving the last plan's course weighs as this much longer; auto: 2 for dd-accel, else 0",
      kPathWeightOfVehicle},
     {"frontier", nullptr, "grouping and scoring of the frontier cells"},

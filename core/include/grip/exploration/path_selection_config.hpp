@@ -32,4 +32,17 @@ struct PathSelectionConfig {
 // (rt::ExplorationDriver): "auto" in a parameter file.
 inline constexpr double kPathWeightOfVehicle = -1.0;
 
+// The path weight as a deployment sets it (a parameter file's exploration keys), carried as it is
+// from the file to the runtime, which turns it into a PathSelectionConfig for its vehicle and map
+// (rt::ExplorationDriver::create).
+struct PathWeightSettings {
+  double sensing_radius_m = 0.0;  // d_max; 0: the runtime's default (a tenth of the map's width)
+  double length_weight_per_m = PathSelectionConfig{}.length_weight_per_m;
+  // kPathWeightOfVehicle: the vehicle's; another negative value is refused.
+  double reference_speed_m_s = kPathWeightOfVehicle;
+  double course_change_m = kPathWeightOfVehicle;
+
+  bool operator==(const PathWeightSettings&) const = default;
+};
+
 }  // namespace grip

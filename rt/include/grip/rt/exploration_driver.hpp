@@ -35,13 +35,7 @@ struct ExplorationDriverConfig {
   // target thread its wavefronts and its sight (TargetSight), and the tree, which needs that
   // time to grow, is carried over in between.
   std::uint32_t refresh_cycles = 5;
-  double sensing_radius_m = 0.0;  // d_max of the path weight; 0: a tenth of the map's width
-  // The rest of the path weight (PathSelectionConfig): lambda, l's reference speed and the cost
-  // of leaving the last plan's course. kPathWeightOfVehicle: the vehicle's (create()); another
-  // negative value is refused.
-  double length_weight_per_m = PathSelectionConfig{}.length_weight_per_m;
-  double reference_speed_m_s = kPathWeightOfVehicle;
-  double course_change_m = kPathWeightOfVehicle;
+  PathWeightSettings path_weight;  // its vehicle's values resolved by create()
 };
 
 template <VehicleModel V>

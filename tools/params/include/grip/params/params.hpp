@@ -42,13 +42,11 @@ struct SensorParams {
 };
 
 struct ExplorationParams {
-  double sensing_radius_m = 0.0;  // d_max of the path weight; 0: "auto", sensor.range_m
-  // The rest of the path weight w = d exp(lambda l) (exploration/path_selector.hpp), under
-  // "path_weight": lambda, l's reference speed (0: l is the length), the cost of leaving the last
-  // plan's course; kPathWeightOfVehicle: "auto", the vehicle's (rt::ExplorationDriver).
-  double length_weight_per_m = PathSelectionConfig{}.length_weight_per_m;
-  double reference_speed_m_s = kPathWeightOfVehicle;
-  double course_change_m = kPathWeightOfVehicle;
+  // The path weight w = d exp(lambda l) (exploration/path_selector.hpp): d_max as the key
+  // sensing_radius_m (0: "auto", sensor.range_m), the rest under "path_weight": lambda, l's
+  // reference speed (0: l is the length), the cost of leaving the last plan's course;
+  // kPathWeightOfVehicle: "auto", the vehicle's (rt::ExplorationDriver).
+  PathWeightSettings path_weight;
   // Grouping and scoring of frontier cells; clearance_m and rho_cell_m are the planner's
   // (planner.rho_clearance_m, planner.rho_cell_m) and not parameters here.
   FrontierConfig frontier;

@@ -81,11 +81,7 @@ struct PlannerParticipantConfig {
   // that arrives later takes over. A goal is waited for this long after the map is in sync.
   bool explore_without_goal = true;
   std::chrono::nanoseconds goal_grace{std::chrono::seconds(1)};
-  double sensing_radius_m = 0.0;  // d_max of the path weight; 0: a tenth of the map's width
-  // The rest of the path weight, as ExplorationDriverConfig's.
-  double length_weight_per_m = PathSelectionConfig{}.length_weight_per_m;
-  double reference_speed_m_s = kPathWeightOfVehicle;
-  double course_change_m = kPathWeightOfVehicle;
+  PathWeightSettings path_weight;  // as ExplorationDriverConfig's
   // A frontier target the vehicle gets no closer to (by rho_A*, 0.5 m) for this long, in
   // vehicle time, is given up (FrontierMap::give_up) and the next one chosen.
   double frontier_give_up_s = 60.0;
