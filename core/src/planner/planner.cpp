@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include "grip/planner/planner.hpp"
 
 #include <algorithm>
@@ -34,7 +35,8 @@ Result<Planner<V>> Planner<V>::create(const V& vehicle, const OccupancyGrid& gri
   if (!baseline) return baseline.error();
   std::optional<TurningRho> turning_rho;
   if (config.rho_turning && vehicle.min_turning_radius_m() > 0.0) {
-    auto made = TurningRho::create(vehicle.min_turning_radius_m(), grid.resolution());
+    static const double k = std::getenv("GRIP_REV_K") ? std::atof(std::getenv("GRIP_REV_K")) : 1.0;
+    auto made = TurningRho::create(vehicle.min_turning_radius_m(), grid.resolution(), k);
     if (!made) return made.error();
     turning_rho = std::move(made).value();
   }
