@@ -1,4 +1,3 @@
-#include <cstdlib>
 #include "grip/planner/planner.hpp"
 
 #include <algorithm>
@@ -35,8 +34,7 @@ Result<Planner<V>> Planner<V>::create(const V& vehicle, const OccupancyGrid& gri
   if (!baseline) return baseline.error();
   std::optional<TurningRho> turning_rho;
   if (config.rho_turning && vehicle.min_turning_radius_m() > 0.0) {
-    static const double k = std::getenv("GRIP_REV_K") ? std::atof(std::getenv("GRIP_REV_K")) : 1.0;
-    auto made = TurningRho::create(vehicle.min_turning_radius_m(), grid.resolution(), k);
+    auto made = TurningRho::create(vehicle.min_turning_radius_m(), grid.resolution());
     if (!made) return made.error();
     turning_rho = std::move(made).value();
   }

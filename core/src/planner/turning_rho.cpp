@@ -13,14 +13,12 @@ constexpr std::size_t kCacheEntries = std::size_t{1} << 16;
 
 }  // namespace
 
-Result<TurningRho> TurningRho::create(double turning_radius_m, double resolution_m,
-                                      double reverse_factor) {
+Result<TurningRho> TurningRho::create(double turning_radius_m, double resolution_m) {
   const double lookahead_m = kLookaheadTurningRadii * turning_radius_m;
   // The table reaches every lookahead point: it lies within lookahead_m (straight) of the state
   // plus the half diagonal of its cell; its cells are a fraction of the grid's and of R.
   auto table = TurningDistance::create(turning_radius_m, lookahead_m + resolution_m,
-                                       std::min(0.5 * resolution_m, 0.1 * turning_radius_m),
-                                       reverse_factor);
+                                       std::min(0.5 * resolution_m, 0.1 * turning_radius_m));
   if (!table) return table.error();
   return TurningRho(std::move(table).value(), lookahead_m, resolution_m);
 }
@@ -52,7 +50,7 @@ double TurningRho::at(const DistanceField& field, double x_m, double y_m,
   const double dy = ay - y_m;
   const double along = c * dx + s * dy;
   const double across = c * dy - s * dx;
-  const double turn = table_.at(std::copysign(std::max(std::abs(along) - half_cell_m_, 0.0), along),
+  const double turn = table_.at(std::max(std::abs(along) - half_cell_m_, 0.0),
                                 std::max(std::abs(across) - half_cell_m_, 0.0));
   return std::max(field.at(cell), field.at(ahead) + turn);
 }

@@ -38,32 +38,6 @@ TEST(TurningDistanceTest, HandComputedCases) {
   EXPECT_NEAR(far, 0.5 * kPi * r + std::sqrt((10.0 - r) * (10.0 - r) - r * r) + 0.0, 0.05);
 }
 
-// Reverse priced: R = 1, a point 3 m straight behind. Backing up costs 3 reverse_factor; the way
-// forward turns at full lock to the tangent point (-0.6, 1.8), heading (-0.8, -0.6), and drives
-// 3 m straight on: an arc of 3 pi / 2 - atan(4 / 3).
-TEST(TurningDistanceTest, ReversingPricedTurnsAroundWhereThatIsCheaper) {
-  const double forward = 3.0 + 1.5 * kPi - std::atan(4.0 / 3.0);
-  EXPECT_NEAR(TurningDistance::exact_m(1.0, -3.0, 0.0, 1.0), 3.0, 1e-12);
-  EXPECT_NEAR(TurningDistance::exact_m(1.0, -3.0, 0.0, 2.0), 6.0, 1e-12);
-  EXPECT_NEAR(TurningDistance::exact_m(1.0, -3.0, 0.0, 6.0), forward, 1e-9);
-  // Ahead nothing changes; beside, half a turn forward as before.
-  EXPECT_NEAR(TurningDistance::exact_m(1.0, 2.0, 0.0, 6.0), 2.0, 1e-12);
-  EXPECT_NEAR(TurningDistance::exact_m(1.0, 0.0, 2.0, 6.0), kPi, 1e-12);
-  // Left and right still mirror; ahead and behind no longer do, and the table knows which.
-  Random rng(11);
-  auto table = TurningDistance::create(1.0, 3.2, 0.02, 6.0);
-  ASSERT_TRUE(table.ok()) << table.error().message;
-  for (int i = 0; i < 1000; ++i) {
-    const double x = std::round(rng.uniform(-3.2, 3.2) / 0.02) * 0.02;
-    const double y = std::round(rng.uniform(-3.2, 3.2) / 0.02) * 0.02;
-    const double d = TurningDistance::exact_m(1.0, x, y, 6.0);
-    EXPECT_NEAR(d, TurningDistance::exact_m(1.0, x, -y, 6.0), 1e-9);
-    EXPECT_GE(d, TurningDistance::exact_m(1.0, x, y, 1.0) - 1e-9);  // never cheaper
-    EXPECT_NEAR(table->at(x, y), d, 1e-4) << x << ", " << y;
-  }
-  EXPECT_NEAR(table->at(-3.0, 0.0), forward, 1e-4);
-}
-
 TEST(TurningDistanceTest, SymmetricAndNeverShorterThanTheStraightLine) {
   Random rng(7);
   for (int i = 0; i < 2000; ++i) {
@@ -106,11 +80,6 @@ TEST(TurningDistanceTest, RefusesBadSizes) {
   refused(0.5, -1.0, 0.1, "range_m");
   refused(0.5, 1.0, 0.0, "resolution_m");
   refused(0.5, 1000.0, 1e-3, "table cells");
-  for (const double factor : {0.5, std::nan("")}) {
-    auto t = TurningDistance::create(0.5, 1.0, 0.1, factor);
-    ASSERT_FALSE(t.ok());
-    EXPECT_NE(t.error().message.find("reverse_factor"), std::string::npos) << t.error().message;
-  }
 }
 
 OccupancyGrid free_grid(int w, int h, double res) {

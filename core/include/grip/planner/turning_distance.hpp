@@ -5,16 +5,15 @@
 // 2008), toward a point because the planner's target set is a set of cells, not a pose.
 //
 // The length is the shortest of the paths made of one arc of radius R and one straight segment,
-// in either order, each driven forward or in reverse (a cusp between them is free), a metre in
-// reverse counted as reverse_factor metres (a vehicle that backs up slower than it drives: its
-// top speed over its top reverse speed prices the time). Wherever the
+// in either order, each driven forward or in reverse (a cusp between them is free). Wherever the
 // point lies outside both turning circles one of them is the shortest path overall; close
 // beside the vehicle, inside a turning circle, a path of two arcs can be a little shorter, so
 // there the length is an upper bound. What matters to the planner is kept: a point beside or
 // behind a vehicle that cannot turn in place is farther than a point the same distance ahead.
 //
-// Lengths are precomputed at start-up into a table of the half of the vehicle's frame to its
-// left (x ahead, y to the left): the right half mirrors it. Lookups are O(1); beyond the table the closed form is
+// Lengths are precomputed at start-up into a table of one quadrant of the vehicle's frame
+// (x ahead, y to the left): the other three follow by symmetry (left and right mirror; forward
+// and reverse cost the same length). Lookups are O(1); beyond the table the closed form is
 // evaluated. create() allocates; lookups never allocate and never throw.
 
 #include <vector>
@@ -26,14 +25,12 @@ namespace grip {
 class TurningDistance {
  public:
   // A table covering |x|, |y| <= range_m at cells of resolution_m. Errors name the value that
-  // is not finite and > 0 (reverse_factor: not finite and >= 1), or a table of more than 2^22
-  // cells.
+  // is not finite and > 0, or a table of more than 2^22 cells.
   static Result<TurningDistance> create(double turning_radius_m, double range_m,
-                                        double resolution_m, double reverse_factor = 1.0);
+                                        double resolution_m);
 
   // [m] The closed form at the point (x_m, y_m) of the vehicle's frame (what the table holds).
-  static double exact_m(double turning_radius_m, double x_m, double y_m,
-                        double reverse_factor = 1.0) noexcept;
+  static double exact_m(double turning_radius_m, double x_m, double y_m) noexcept;
 
   // [m] The table's length at (x_m, y_m) in the vehicle's frame: the length at the table cell
   // nearest to the point (within the table), else the closed form.
@@ -41,17 +38,14 @@ class TurningDistance {
 
   double turning_radius_m() const noexcept { return radius_m_; }
   double range_m() const noexcept { return range_m_; }
-  double reverse_factor() const noexcept { return reverse_factor_; }
 
  private:
-  TurningDistance(double radius_m, double range_m, double resolution_m, double reverse_factor,
-                  int side);
+  TurningDistance(double radius_m, double range_m, double resolution_m, int side);
 
   double radius_m_;
   double range_m_;
-  double reverse_factor_;
   double inv_resolution_;
-  int side_;  // cells from the vehicle to the table's edge, the vehicle's included
+  int side_;  // cells per side of the quadrant
   std::vector<float> lengths_;
 };
 

@@ -33,10 +33,8 @@ namespace grip {
 
 class TurningRho {
  public:
-  // For a turning radius > 0 [m] and a grid of this resolution [m], a metre in reverse counted as
-  // reverse_factor (TurningDistance); errors name the value.
-  static Result<TurningRho> create(double turning_radius_m, double resolution_m,
-                                   double reverse_factor = 1.0);
+  // For a turning radius > 0 [m] and a grid of this resolution [m]; errors name the value.
+  static Result<TurningRho> create(double turning_radius_m, double resolution_m);
 
   // [m] rho at the pose (x_m, y_m, theta) on `field` (rho_A* toward F, of the grid's
   // resolution); +infinity where rho_A* is.
