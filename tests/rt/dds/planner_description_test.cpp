@@ -96,8 +96,7 @@ TEST(PlannerDescription, AMatchingCarIsPlannedForAsBefore) {
       20000ms, vehicle.get()))
       << "no plans came";
   EXPECT_GE(plans, 5U);
-  planner.planner->request_stop();
-  const Result<PlannerParticipantReport>& result = planner.join();
+  const Result<PlannerParticipantReport>& result = planner.stop();
   ASSERT_TRUE(result.ok()) << result.error().message;
 }
 

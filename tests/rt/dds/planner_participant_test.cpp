@@ -238,8 +238,7 @@ TEST(PlannerParticipant, EveryKindOfBadInputIsRejectedAndCounted) {
   EXPECT_TRUE(status->map_in_sync);
   EXPECT_EQ(status->map_checksum, map_checksum(link.map()));
   EXPECT_EQ(status->map_gaps, 0U) << "a rejected update is not a gap";
-  planner.planner->request_stop();
-  const Result<PlannerParticipantReport>& result = planner.join();
+  const Result<PlannerParticipantReport>& result = planner.stop();
   ASSERT_TRUE(result.ok()) << result.error().message;
   EXPECT_EQ(result->rejected_vehicle_state, 9U);
   EXPECT_EQ(result->rejected_map_update, 5U);
@@ -276,8 +275,7 @@ TEST(PlannerParticipant, ALockstepVehicleThatRepeatsAnAnsweredStateGetsItsPlanAg
   // WHEN the vehicle goes on repeating the state THEN the same plan comes again
   ASSERT_TRUE(eventually(repeat_until(2), 5000ms)) << "the plan was not written again";
   EXPECT_EQ(cycles[1], cycles[0]);
-  planner.planner->request_stop();
-  const Result<PlannerParticipantReport>& result = planner.join();
+  const Result<PlannerParticipantReport>& result = planner.stop();
   ASSERT_TRUE(result.ok()) << result.error().message;
   EXPECT_GE(result->plans_rewritten, 1U);
   EXPECT_EQ(result->plans_published, 1U) << "planned for the repeat as for a new state";
@@ -320,8 +318,7 @@ TEST(PlannerParticipant, AVehicleBrakingOffItsPlansIsPlannedForFromWhereBrakingT
     return replanned.has_value();
   };
   ASSERT_TRUE(eventually(find_replanned, 5000ms)) << "no plan answered the braking state";
-  planner.planner->request_stop();
-  const Result<PlannerParticipantReport>& result = planner.join();
+  const Result<PlannerParticipantReport>& result = planner.stop();
   ASSERT_TRUE(result.ok()) << result.error().message;
   EXPECT_GE(result->resyncs, 1U);
 
@@ -383,8 +380,7 @@ TEST(PlannerParticipant, AKilledControllerIsNoticedThroughLiveliness) {
   // The planner goes on planning on its last map.
   const std::uint64_t cycle = status->cycle;
   EXPECT_TRUE(eventually([&] { return latest() && status->cycle > cycle + 5; }, 5000ms));
-  planner.planner->request_stop();
-  const Result<PlannerParticipantReport>& result = planner.join();
+  const Result<PlannerParticipantReport>& result = planner.stop();
   ASSERT_TRUE(result.ok()) << result.error().message;
   EXPECT_EQ(result->vehicle_losses, 1U);
   RecordProperty(

@@ -107,8 +107,7 @@ TEST(PlannerRestart, ASimulatorRestartedUnderARunningPlannerIsExploredAgain) {
   ASSERT_TRUE(second->last_status.has_value());
   EXPECT_EQ(second->last_status->vehicle_restarts, 1U);
   EXPECT_FALSE(planner.returned.load()) << "the planner stopped";
-  planner.planner->request_stop();
-  const auto& report = planner.join();
+  const auto& report = planner.stop();
   ASSERT_TRUE(report.ok()) << report.error().message;
   EXPECT_EQ(report->vehicle_restarts, 1U);
 }

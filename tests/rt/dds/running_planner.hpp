@@ -53,6 +53,11 @@ struct RunningPlanner {
     if (thread.joinable()) thread.join();
     return *result;
   }
+  // Asks the participant to stop and waits for its report.
+  const Result<PlannerParticipantReport>& stop() {
+    if (planner) planner->request_stop();
+    return join();
+  }
   ~RunningPlanner() {
     if (planner) planner->request_stop();
     if (thread.joinable()) thread.join();
