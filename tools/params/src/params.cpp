@@ -82,17 +82,16 @@ void check_exploration(const SensorParams& s, const ExplorationParams& e, const 
   r.require(finite_non_negative(s.range_m), s.range_m, "finite and >= 0 (0: auto)");
   r.require(s.rays == 0 || (s.rays >= 16 && s.rays <= 100'000), s.rays,
             "auto (0) or in [16, 100000]");
-  r.require(finite_non_negative(e.path_weight.sensing_radius_m), e.path_weight.sensing_radius_m,
+  const PathWeightSettings& w = e.path_weight;
+  r.require(finite_non_negative(w.sensing_radius_m), w.sensing_radius_m,
             "finite and >= 0 (0: auto)");
-  r.require(finite_non_negative(e.path_weight.length_weight_per_m),
-            e.path_weight.length_weight_per_m, "finite and >= 0");
+  r.require(finite_non_negative(w.length_weight_per_m), w.length_weight_per_m, "finite and >= 0");
   const auto auto_or_non_negative = [](double v) {
     return v == kPathWeightOfVehicle || finite_non_negative(v);
   };
-  r.require(auto_or_non_negative(e.path_weight.reference_speed_m_s),
-            e.path_weight.reference_speed_m_s, "auto or finite and >= 0");
-  r.require(auto_or_non_negative(e.path_weight.course_change_m), e.path_weight.course_change_m,
+  r.require(auto_or_non_negative(w.reference_speed_m_s), w.reference_speed_m_s,
             "auto or finite and >= 0");
+  r.require(auto_or_non_negative(w.course_change_m), w.course_change_m, "auto or finite and >= 0");
   // The map's resolution is not known here: FrontierMap::create checks the approach range
   // against clearance_m plus a cell's diagonal once it is; this is that check for a cell of 0.
   // Frontiers are approached from the cells rho traverses (rt/exploration_driver.hpp).
